@@ -1,0 +1,118 @@
+#ifndef mpm_assembly_grid_transfer_h
+#define mpm_assembly_grid_transfer_h
+
+#include <deal.II/base/tensor.h>
+
+#include <mpm/assembly/grid_nodes.h>
+#include <mpm/basis/grid_basis.h>
+#include <mpm/boundary/dirichlet_conditions.h>
+#include <mpm/points/material_points.h>
+
+namespace mpm
+{
+  using namespace dealii;
+
+  /**
+   * The transfers between material points and grid nodes that every scheme
+   * shares: the lumped mass, momentum and force projections (P2G), the
+   * nodal solve, and the loop that hands each point its support for the
+   * grid-to-point updates (G2P).
+   */
+  template <int dim>
+  class GridTransfer
+  {
+  public:
+    using Layout      = PointLayout<dim>;
+    using NodalLayout = typename GridNodes<dim>::NodalLayout;
+
+    GridTransfer(MaterialPoints<dim> &           points,
+                 const GridBasis<dim> &          basis,
+                 GridNodes<dim> &                nodes,
+                 const DirichletConditions<dim> &dirichlet,
+                 const Tensor<1, dim> &          gravity);
+
+    /**
+     * Call f(particle, support) for every local point, points of one cell
+     * after another, with the support of the point's current position.
+     */
+    template <typename Function>
+    void
+    for_each_point(const Function &f)
+    {
+      Support<dim> support;
+      auto &       handler = points.handler();
+      for (auto particle = handler.begin(); particle != handler.end();
+           ++particle)
+        {
+          const unsigned int cell =
+            particle->get_surrounding_cell()->active_cell_index();
+          basis.evaluate(cell, particle->get_reference_location(), support);
+          f(particle, support);
+        }
+    }
+
+    /**
+     * Lumped mass and momentum on the nodes, and, if `with_force`, the
+     * internal force -sum V_p sigma_p grad N plus gravity sum N m_p g.
+     */
+    void
+    project_mass_momentum(const bool with_force);
+
+    /** Momentum alone (the masses of the last projection stay). */
+    void
+    project_momentum();
+
+    /** Internal and gravity force alone, from the current stresses. */
+    void
+    project_force();
+
+    /** v = p / m on every node, then the velocity conditions. */
+    void
+    compute_nodal_velocity();
+
+    /**
+     * a = f / m on every node, then the velocity conditions (they hold for
+     * a as well); if `advance_velocity`, also v += dt a.
+     */
+    void
+    compute_nodal_acceleration(const double dt, const bool advance_velocity);
+
+    /** Nodal velocity and acceleration interpolated at a point. */
+    Tensor<1, dim>
+    interpolate(const Support<dim> &support, const unsigned int component) const
+    {
+      const double * v = nodes.data();
+      Tensor<1, dim> result;
+      for (unsigned int i = 0; i < support.n_nodes; ++i)
+        for (unsigned int d = 0; d < dim; ++d)
+          result[d] += support.N[i] * v[support.nodes[i] + component + d];
+      return result;
+    }
+
+    /** Velocity gradient L = sum v_i (x) grad N_i at a point. */
+    Tensor<2, dim>
+    velocity_gradient(const Support<dim> &support) const
+    {
+      const double * v = nodes.data();
+      Tensor<2, dim> L;
+      for (unsigned int i = 0; i < support.n_nodes; ++i)
+        for (unsigned int a = 0; a < dim; ++a)
+          for (unsigned int b = 0; b < dim; ++b)
+            L[a][b] += v[support.nodes[i] + NodalLayout::velocity + a] *
+                       support.grad_N[i][b];
+      return L;
+    }
+
+  private:
+    void
+    add_force(const ArrayView<const double> &p, const Support<dim> &support);
+
+    MaterialPoints<dim> &           points;
+    const GridBasis<dim> &          basis;
+    GridNodes<dim> &                nodes;
+    const DirichletConditions<dim> &dirichlet;
+    const Tensor<1, dim>            gravity;
+  };
+} // namespace mpm
+
+#endif

@@ -1,0 +1,79 @@
+#ifndef mpm_bodies_body_h
+#define mpm_bodies_body_h
+
+#include <deal.II/base/function_parser.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/point.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace mpm
+{
+  using namespace dealii;
+
+  /**
+   * A body of material: a shape filled with material points, the material
+   * they are made of, and their initial velocity. Shapes: box, disk (2D),
+   * sphere (3D) and polygon (2D).
+   */
+  template <int dim>
+  class Body
+  {
+  public:
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    /** Parse the current subsection; `section_path` is for messages. */
+    Body(const ParameterHandler &        prm,
+         const std::string &             name,
+         const std::string &             section_path,
+         const std::vector<std::string> &material_names);
+
+    bool
+    contains(const Point<dim> &x) const;
+
+    Tensor<1, dim>
+    initial_velocity(const Point<dim> &x) const;
+
+    const std::string &
+    name() const
+    {
+      return body_name;
+    }
+
+    unsigned int
+    material_index() const
+    {
+      return material;
+    }
+
+    unsigned int
+    points_per_cell_direction() const
+    {
+      return n_points_per_direction;
+    }
+
+  private:
+    enum class Shape
+    {
+      box,
+      ball,
+      polygon
+    };
+
+    std::string             body_name;
+    Shape                   shape;
+    Point<dim>              lower_corner;
+    Point<dim>              upper_corner;
+    Point<dim>              center;
+    double                  radius = 0.;
+    std::vector<Point<dim>> polygon;
+    unsigned int            material = 0;
+    unsigned int            n_points_per_direction;
+    std::unique_ptr<FunctionParser<dim>> velocity;
+  };
+} // namespace mpm
+
+#endif

@@ -1,0 +1,84 @@
+#ifndef mpm_boundary_dirichlet_conditions_h
+#define mpm_boundary_dirichlet_conditions_h
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/tensor.h>
+
+#include <mpm/assembly/grid_nodes.h>
+#include <mpm/grid/background_grid.h>
+
+#include <string>
+#include <vector>
+
+namespace mpm
+{
+  using namespace dealii;
+
+  /**
+   * Velocity conditions on named boundaries of the background grid:
+   * `fixed` (zero velocity) and `slip` (zero normal velocity). A node on
+   * several slip faces loses each face's normal component; a node with dim
+   * independent normals, or on a fixed face, is fixed.
+   */
+  template <int dim>
+  class DirichletConditions
+  {
+  public:
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    /** Parse the `Boundary conditions` subsection at top level. */
+    DirichletConditions(ParameterHandler &         prm,
+                        const BackgroundGrid<dim> &grid);
+
+    /** Find the constrained nodes of all locally relevant cells. */
+    void
+    setup(const GridNodes<dim> &nodes);
+
+    /**
+     * Remove the constrained components of the nodal vector that starts at
+     * `component` (the velocity or the force) of `node`.
+     */
+    void
+    apply(const unsigned int node, double *vector_at_node) const
+    {
+      const int c = constraint_of_node[node / GridNodes<dim>::NodalLayout::
+                                                n_components];
+      if (c < 0)
+        return;
+      const Constraint &constraint = constraints[c];
+      if (constraint.n_normals == dim)
+        {
+          for (unsigned int d = 0; d < dim; ++d)
+            vector_at_node[d] = 0.;
+          return;
+        }
+      for (unsigned int k = 0; k < constraint.n_normals; ++k)
+        {
+          double dot = 0.;
+          for (unsigned int d = 0; d < dim; ++d)
+            dot += vector_at_node[d] * constraint.normals[k][d];
+          for (unsigned int d = 0; d < dim; ++d)
+            vector_at_node[d] -= dot * constraint.normals[k][d];
+        }
+    }
+
+  private:
+    struct Constraint
+    {
+      /** Orthonormal; n_normals == dim means fixed. */
+      std::array<Tensor<1, dim>, dim> normals;
+      unsigned int                    n_normals = 0;
+    };
+
+    std::vector<types::boundary_id> fixed_ids;
+    std::vector<types::boundary_id> slip_ids;
+    std::vector<std::string>        fixed_names;
+    std::vector<std::string>        slip_names;
+
+    std::vector<int>        constraint_of_node;
+    std::vector<Constraint> constraints;
+  };
+} // namespace mpm
+
+#endif

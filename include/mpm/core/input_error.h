@@ -1,0 +1,37 @@
+#ifndef mpm_core_input_error_h
+#define mpm_core_input_error_h
+
+#include <stdexcept>
+#include <string>
+
+namespace mpm
+{
+  /**
+   * A problem with what the user gave us: a parameter value, a file, a
+   * combination of settings. The message is shown to the user as it is, so
+   * it names the entry (as `Section/entry`) and, where it helps, the values
+   * that would be accepted.
+   */
+  class InputError : public std::runtime_error
+  {
+  public:
+    explicit InputError(const std::string &message)
+      : std::runtime_error(message)
+    {}
+  };
+
+  /**
+   * A run that was set up correctly but could not continue: a point that left
+   * the grid, a non-finite velocity, a point that would skip a cell. The
+   * message says what happened, where and when.
+   */
+  class RunError : public std::runtime_error
+  {
+  public:
+    explicit RunError(const std::string &message)
+      : std::runtime_error(message)
+    {}
+  };
+} // namespace mpm
+
+#endif

@@ -1,0 +1,121 @@
+#ifndef mpm_core_simulator_h
+#define mpm_core_simulator_h
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/timer.h>
+#include <deal.II/distributed/tria.h>
+#include <deal.II/fe/mapping.h>
+
+#include <mpm/assembly/grid_nodes.h>
+#include <mpm/assembly/grid_transfer.h>
+#include <mpm/basis/grid_basis.h>
+#include <mpm/bodies/body.h>
+#include <mpm/boundary/dirichlet_conditions.h>
+#include <mpm/grid/background_grid.h>
+#include <mpm/materials/material.h>
+#include <mpm/output/time_series.h>
+#include <mpm/output/vtu_output.h>
+#include <mpm/points/material_points.h>
+#include <mpm/time/explicit_integrator.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace mpm
+{
+  using namespace dealii;
+
+  /**
+   * Owns everything a run needs (grid, points, materials, output, timers)
+   * and runs the explicit time loop. A scene is described entirely by the
+   * ParameterHandler it is built from.
+   */
+  template <int dim>
+  class Simulator
+  {
+  public:
+    /**
+     * Declare every entry except `Dimension` and the `Names` lists, which
+     * Application declares for its first pass.
+     */
+    static void
+    declare_parameters(ParameterHandler &              prm,
+                       const std::vector<std::string> &material_names,
+                       const std::vector<std::string> &body_names);
+
+    /** Parse the scene and set everything up; bad input throws InputError. */
+    Simulator(ParameterHandler &              prm,
+              const std::vector<std::string> &material_names,
+              const std::vector<std::string> &body_names,
+              const MPI_Comm                  communicator);
+
+    /** Run to the end time. A run that cannot go on throws RunError. */
+    void
+    run();
+
+    /** The diagnostics of the last time-series row. */
+    const Diagnostics<dim> &
+    last_diagnostics() const
+    {
+      return diagnostics;
+    }
+
+    const MaterialPoints<dim> &
+    get_points() const
+    {
+      return *points;
+    }
+
+  private:
+    double
+    stable_time_step(const double max_speed) const;
+
+    void
+    check_step(const typename ExplicitIntegrator<dim>::StepReport &report,
+               const double                                         dt);
+
+    void
+    report_progress(const bool force);
+
+    const MPI_Comm     communicator;
+    ConditionalOStream pcout;
+    TimerOutput        timer;
+
+    parallel::distributed::Triangulation<dim> triangulation;
+    std::unique_ptr<Mapping<dim>>             mapping;
+    std::unique_ptr<BackgroundGrid<dim>>      grid;
+    GridNodes<dim>                            nodes;
+    GridBasis<dim>                            basis;
+    std::unique_ptr<DirichletConditions<dim>> dirichlet;
+    std::vector<std::unique_ptr<Material>>    materials;
+    std::vector<Body<dim>>                    bodies;
+    std::unique_ptr<MaterialPoints<dim>>      points;
+    std::unique_ptr<GridTransfer<dim>>        transfer;
+    std::unique_ptr<ExplicitIntegrator<dim>>  integrator;
+    std::unique_ptr<VtuOutput<dim>>           vtu_output;
+    std::unique_ptr<TimeSeries<dim>>          time_series;
+
+    Tensor<1, dim> gravity;
+    double         end_time;
+    double         fixed_time_step;
+    double         cfl_number;
+    std::string    output_directory;
+    double         output_interval;
+    bool           write_grid;
+    double         time_series_interval;
+    std::string    time_series_file;
+    std::vector<Point<dim>> tracked_positions;
+
+    double           time     = 0.;
+    unsigned int     step     = 0;
+    double           dt       = 0.;
+    Diagnostics<dim> diagnostics;
+    Timer            wall_clock;
+    double           last_progress_wall = 0.;
+    unsigned int     last_progress_decile = 0;
+  };
+} // namespace mpm
+
+#endif

@@ -1,0 +1,27 @@
+#ifndef mpm_materials_linear_elastic_h
+#define mpm_materials_linear_elastic_h
+
+#include <mpm/materials/material.h>
+
+namespace mpm
+{
+  /**
+   * Hypoelastic isotropic law integrated with the Jaumann rate, as in [W]:
+   * sigma += dt (lambda tr(D) I + 2 mu D + W sigma - sigma W),
+   * with D and W the symmetric and skew parts of the velocity gradient.
+   */
+  class LinearElastic : public Material
+  {
+  public:
+    LinearElastic(const ParameterHandler &prm,
+                  const std::string &     name,
+                  const std::string &     section_path);
+
+    void
+    update_stress(const StepKinematics &   kinematics,
+                  SymmetricTensor<2, 3> &  stress,
+                  const ArrayView<double> &internal_variables) const override;
+  };
+} // namespace mpm
+
+#endif

@@ -1,0 +1,101 @@
+#ifndef mpm_materials_material_h
+#define mpm_materials_material_h
+
+#include <deal.II/base/array_view.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/symmetric_tensor.h>
+#include <deal.II/base/tensor.h>
+
+#include <memory>
+#include <string>
+
+namespace mpm
+{
+  using namespace dealii;
+
+  /**
+   * What a constitutive law sees of one material point over one step. All
+   * tensors are 3x3: a 2D plane-strain point has F_zz = 1 and no
+   * out-of-plane velocity gradient, but keeps its out-of-plane stress, which
+   * the laws (and later plasticity) need.
+   */
+  struct StepKinematics
+  {
+    Tensor<2, 3> F_old;
+    Tensor<2, 3> F_new;
+    /** Velocity gradient L over the step: F_new = (I + dt L) F_old. */
+    Tensor<2, 3> velocity_gradient;
+    double       dt;
+  };
+
+  /**
+   * The one constitutive interface. A law updates the Cauchy stress of a
+   * point from its kinematics and its internal variables. Elastic constants
+   * E, nu and the density are common to every law and live here; a law adds
+   * its own parameters in a subsection named after it.
+   */
+  class Material
+  {
+  public:
+    virtual ~Material() = default;
+
+    /** Declare the entries of one material subsection. */
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    /** Build the law named by `Model` in the current subsection. */
+    static std::unique_ptr<Material>
+    create(const ParameterHandler &prm,
+           const std::string &     name,
+           const std::string &     section_path);
+
+    /** Cauchy stress at the end of the step, in place. */
+    virtual void
+    update_stress(const StepKinematics &   kinematics,
+                  SymmetricTensor<2, 3> &  stress,
+                  const ArrayView<double> &internal_variables) const = 0;
+
+    /** How many internal variables a point of this law carries. */
+    virtual unsigned int
+    n_internal_variables() const
+    {
+      return 0;
+    }
+
+    const std::string &
+    name() const
+    {
+      return material_name;
+    }
+
+    double
+    density() const
+    {
+      return rho;
+    }
+
+    /** lambda + 2 mu: with the density it gives the p-wave speed. */
+    double
+    p_wave_modulus() const
+    {
+      return lambda + 2. * mu;
+    }
+
+    double
+    p_wave_speed() const;
+
+  protected:
+    Material(const ParameterHandler &prm,
+             const std::string &     name,
+             const std::string &     section_path);
+
+    std::string material_name;
+    double      rho;
+    double      youngs_modulus;
+    double      poissons_ratio;
+    double      lambda;
+    double      mu;
+  };
+} // namespace mpm
+
+#endif

@@ -1,0 +1,50 @@
+#ifndef mpm_output_vtu_output_h
+#define mpm_output_vtu_output_h
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/fe/mapping.h>
+
+#include <mpm/assembly/grid_nodes.h>
+#include <mpm/points/material_points.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace mpm
+{
+  using namespace dealii;
+
+  /**
+   * ParaView output: the material points with all their properties, and
+   * optionally the grid with its nodal mass, velocity and acceleration, as
+   * VTU files per rank, a PVTU per snapshot and a PVD series per kind
+   * (points.pvd, grid.pvd) that is rewritten after every snapshot, so a run
+   * that stops early leaves a readable series.
+   */
+  template <int dim>
+  class VtuOutput
+  {
+  public:
+    VtuOutput(const std::string &directory,
+              const bool         write_grid,
+              const MPI_Comm     communicator);
+
+    void
+    write(const double               time,
+          const MaterialPoints<dim> &points,
+          const GridNodes<dim> &     nodes,
+          const Mapping<dim> &       mapping);
+
+  private:
+    const std::string directory;
+    const bool        write_grid;
+    const MPI_Comm    communicator;
+    unsigned int      counter = 0;
+
+    std::vector<std::pair<double, std::string>> point_records;
+    std::vector<std::pair<double, std::string>> grid_records;
+  };
+} // namespace mpm
+
+#endif

@@ -1,0 +1,100 @@
+#ifndef mpm_points_material_points_h
+#define mpm_points_material_points_h
+
+#include <deal.II/distributed/tria.h>
+#include <deal.II/fe/mapping.h>
+#include <deal.II/particles/particle_handler.h>
+
+#include <mpm/bodies/body.h>
+#include <mpm/materials/material.h>
+#include <mpm/points/point_layout.h>
+
+#include <memory>
+#include <vector>
+
+namespace mpm
+{
+  using namespace dealii;
+
+  /**
+   * The material points of a scene, stored in a Particles::ParticleHandler
+   * with the properties of PointLayout. Points move with the cells across
+   * ranks when they are sorted.
+   */
+  template <int dim>
+  class MaterialPoints
+  {
+  public:
+    using Layout = PointLayout<dim>;
+
+    MaterialPoints(const parallel::distributed::Triangulation<dim> &tria,
+                   const Mapping<dim> &                             mapping,
+                   const unsigned int n_internal_variables);
+
+    /**
+     * Fill every locally owned cell with the points of the bodies that
+     * contain them: n^dim points per cell at the centres of a regular
+     * subdivision, each with the volume of its sub-cell. Ids are unique
+     * across ranks.
+     */
+    void
+    seed(const std::vector<Body<dim>> &                  bodies,
+         const std::vector<std::unique_ptr<Material>> &materials);
+
+    /**
+     * Put every point into the cell (and onto the rank) that contains its
+     * current position. A point that leaves the grid, or moves beyond the
+     * cells next to its old one, stops the run with a RunError naming its
+     * position.
+     */
+    void
+    sort();
+
+    Particles::ParticleHandler<dim> &
+    handler()
+    {
+      return particle_handler;
+    }
+
+    const Particles::ParticleHandler<dim> &
+    handler() const
+    {
+      return particle_handler;
+    }
+
+    const parallel::distributed::Triangulation<dim> &
+    get_triangulation() const
+    {
+      return triangulation;
+    }
+
+    MPI_Comm
+    get_communicator() const
+    {
+      return triangulation.get_communicator();
+    }
+
+    unsigned int
+    n_internal_variables() const
+    {
+      return n_internal;
+    }
+
+    types::particle_index
+    n_global_points() const
+    {
+      return particle_handler.n_global_particles();
+    }
+
+  private:
+    const parallel::distributed::Triangulation<dim> &triangulation;
+    const Mapping<dim> &                             mapping;
+    Particles::ParticleHandler<dim>                  particle_handler;
+    const unsigned int              n_internal;
+
+    /** Filled by the particle_lost signal during a sort. */
+    std::vector<Point<dim>> lost_positions;
+  };
+} // namespace mpm
+
+#endif

@@ -1,0 +1,149 @@
+#include <mpm/assembly/grid_transfer.h>
+
+namespace mpm
+{
+  template <int dim>
+  GridTransfer<dim>::GridTransfer(MaterialPoints<dim> &           points,
+                                  const GridBasis<dim> &          basis,
+                                  GridNodes<dim> &                nodes,
+                                  const DirichletConditions<dim> &dirichlet,
+                                  const Tensor<1, dim> &          gravity)
+    : points(points)
+    , basis(basis)
+    , nodes(nodes)
+    , dirichlet(dirichlet)
+    , gravity(gravity)
+  {}
+
+
+
+  template <int dim>
+  void
+  GridTransfer<dim>::add_force(const ArrayView<const double> &p,
+                               const Support<dim> &           support)
+  {
+    double *           v = nodes.data();
+    const double       m = p[Layout::mass];
+    const Tensor<2, dim> F = Layout::get_deformation_gradient(p);
+    const double volume  = determinant(F) * p[Layout::reference_volume];
+    // In-plane block of the Cauchy stress; raw order xx, yy, zz, xy, xz, yz.
+    Tensor<2, dim> sigma;
+    const double * s = &p[Layout::stress];
+    sigma[0][0]      = s[0];
+    sigma[1][1]      = s[1];
+    sigma[0][1] = sigma[1][0] = s[3];
+    if constexpr (dim == 3)
+      {
+        sigma[2][2] = s[2];
+        sigma[0][2] = sigma[2][0] = s[4];
+        sigma[1][2] = sigma[2][1] = s[5];
+      }
+    for (unsigned int i = 0; i < support.n_nodes; ++i)
+      {
+        const Tensor<1, dim> internal = volume * (sigma * support.grad_N[i]);
+        double *             f = v + support.nodes[i] + NodalLayout::force;
+        for (unsigned int d = 0; d < dim; ++d)
+          f[d] += support.N[i] * m * gravity[d] - internal[d];
+      }
+  }
+
+
+
+  template <int dim>
+  void
+  GridTransfer<dim>::project_mass_momentum(const bool with_force)
+  {
+    nodes.begin_projection(0, NodalLayout::n_components);
+    double *v = nodes.data();
+    for_each_point([&](const auto &particle, const Support<dim> &support) {
+      const ArrayView<const double> p = particle->get_properties();
+      const double                  m = p[Layout::mass];
+      for (unsigned int i = 0; i < support.n_nodes; ++i)
+        {
+          const unsigned int node = support.nodes[i];
+          const double       Nm   = support.N[i] * m;
+          v[node + NodalLayout::mass] += Nm;
+          for (unsigned int d = 0; d < dim; ++d)
+            v[node + NodalLayout::velocity + d] += Nm * p[Layout::velocity + d];
+          nodes.mark_active(node);
+        }
+      if (with_force)
+        add_force(p, support);
+    });
+    nodes.finish_projection();
+  }
+
+
+
+  template <int dim>
+  void
+  GridTransfer<dim>::project_momentum()
+  {
+    nodes.begin_projection(NodalLayout::velocity, dim);
+    double *v = nodes.data();
+    for_each_point([&](const auto &particle, const Support<dim> &support) {
+      const ArrayView<const double> p = particle->get_properties();
+      const double                  m = p[Layout::mass];
+      for (unsigned int i = 0; i < support.n_nodes; ++i)
+        for (unsigned int d = 0; d < dim; ++d)
+          v[support.nodes[i] + NodalLayout::velocity + d] +=
+            support.N[i] * m * p[Layout::velocity + d];
+    });
+    nodes.finish_projection();
+  }
+
+
+
+  template <int dim>
+  void
+  GridTransfer<dim>::project_force()
+  {
+    nodes.begin_projection(NodalLayout::force, dim);
+    for_each_point([&](const auto &particle, const Support<dim> &support) {
+      add_force(particle->get_properties(), support);
+    });
+    nodes.finish_projection();
+  }
+
+
+
+  template <int dim>
+  void
+  GridTransfer<dim>::compute_nodal_velocity()
+  {
+    double *v = nodes.data();
+    for (const unsigned int node : nodes.nodes_to_solve())
+      {
+        const double m = v[node + NodalLayout::mass];
+        for (unsigned int d = 0; d < dim; ++d)
+          v[node + NodalLayout::velocity + d] /= m;
+        dirichlet.apply(node, v + node + NodalLayout::velocity);
+      }
+  }
+
+
+
+  template <int dim>
+  void
+  GridTransfer<dim>::compute_nodal_acceleration(const double dt,
+                                                const bool   advance_velocity)
+  {
+    double *v = nodes.data();
+    for (const unsigned int node : nodes.nodes_to_solve())
+      {
+        const double m = v[node + NodalLayout::mass];
+        double *     a = v + node + NodalLayout::force;
+        for (unsigned int d = 0; d < dim; ++d)
+          a[d] /= m;
+        dirichlet.apply(node, a);
+        if (advance_velocity)
+          for (unsigned int d = 0; d < dim; ++d)
+            v[node + NodalLayout::velocity + d] += dt * a[d];
+      }
+  }
+
+
+
+  template class GridTransfer<2>;
+  template class GridTransfer<3>;
+} // namespace mpm

@@ -1,0 +1,188 @@
+#include <deal.II/base/exceptions.h>
+
+#include <mpm/bodies/body.h>
+#include <mpm/core/input_error.h>
+#include <mpm/core/parse.h>
+
+#include <algorithm>
+#include <sstream>
+
+namespace mpm
+{
+  template <int dim>
+  void
+  Body<dim>::declare_parameters(ParameterHandler &prm)
+  {
+    prm.declare_entry("Shape",
+                      "box",
+                      Patterns::Selection("box|disk|sphere|polygon"),
+                      "Shape filled with points: 'box' (Lower corner, Upper "
+                      "corner), 'disk' in 2D or 'sphere' in 3D (Center, "
+                      "Radius), 'polygon' in 2D (Vertices).");
+    prm.declare_entry("Lower corner", "", Patterns::Anything(),
+                      "Box: the corner with the smallest coordinates, "
+                      "e.g. '0, 0'.");
+    prm.declare_entry("Upper corner", "", Patterns::Anything(),
+                      "Box: the corner with the largest coordinates.");
+    prm.declare_entry("Center", "", Patterns::Anything(),
+                      "Disk or sphere: its centre, e.g. '0.2, 0.2'.");
+    prm.declare_entry("Radius", "0", Patterns::Double(0.),
+                      "Disk or sphere: its radius.");
+    prm.declare_entry("Vertices", "", Patterns::Anything(),
+                      "Polygon: its vertices in order, ';'-separated, e.g. "
+                      "'0,0; 1,0; 0,1'.");
+    prm.declare_entry("Material", "", Patterns::Anything(),
+                      "Name of the material (one of Materials/Names).");
+    prm.declare_entry("Points per cell direction", "2", Patterns::Integer(1, 10),
+                      "Material points per background cell and direction, "
+                      "placed at the centres of a regular n x n (x n) "
+                      "subdivision of each cell. A point belongs to the first "
+                      "body, in the order of Bodies/Names, that contains it.");
+    prm.declare_entry("Initial velocity", "0; 0; 0", Patterns::Anything(),
+                      "Initial velocity as a function of position x, y (, z) "
+                      "and the constant pi: one expression per component, "
+                      "';'-separated, e.g. '0.1; 0.1' or "
+                      "'0.1*sin(pi*x/50); 0'. Extra trailing components "
+                      "beyond the dimension are ignored if zero.");
+  }
+
+
+
+  template <int dim>
+  Body<dim>::Body(const ParameterHandler &        prm,
+                  const std::string &             name,
+                  const std::string &             section_path,
+                  const std::vector<std::string> &material_names)
+    : body_name(name)
+    , n_points_per_direction(prm.get_integer("Points per cell direction"))
+  {
+    const std::string shape_name = prm.get("Shape");
+    if (shape_name == "box")
+      {
+        shape        = Shape::box;
+        lower_corner = parse_point<dim>(prm.get("Lower corner"),
+                                        section_path + "/Lower corner");
+        upper_corner = parse_point<dim>(prm.get("Upper corner"),
+                                        section_path + "/Upper corner");
+        for (unsigned int d = 0; d < dim; ++d)
+          if (!(upper_corner[d] > lower_corner[d]))
+            throw InputError(section_path +
+                             "/Upper corner must be larger than Lower corner "
+                             "in every coordinate.");
+      }
+    else if (shape_name == "disk" || shape_name == "sphere")
+      {
+        if ((shape_name == "disk") != (dim == 2))
+          throw InputError(section_path + "/Shape = " + shape_name +
+                           " needs Dimension = " + (dim == 2 ? "3" : "2") +
+                           "; use " + (dim == 2 ? "disk" : "sphere") + ".");
+        shape  = Shape::ball;
+        center = parse_point<dim>(prm.get("Center"), section_path + "/Center");
+        radius = prm.get_double("Radius");
+        if (!(radius > 0.))
+          throw InputError(section_path + "/Radius must be positive.");
+      }
+    else
+      {
+        if (dim != 2)
+          throw InputError(section_path +
+                           "/Shape = polygon is available in 2D only.");
+        shape   = Shape::polygon;
+        polygon = parse_point_list<dim>(prm.get("Vertices"),
+                                        section_path + "/Vertices");
+        if (polygon.size() < 3)
+          throw InputError(section_path +
+                           "/Vertices must list at least 3 points.");
+      }
+
+    const std::string material_name = prm.get("Material");
+    const auto        found =
+      std::find(material_names.begin(), material_names.end(), material_name);
+    if (found == material_names.end())
+      {
+        std::string known;
+        for (const auto &m : material_names)
+          known += (known.empty() ? "" : ", ") + m;
+        throw InputError(section_path + "/Material = '" + material_name +
+                         "' is not one of Materials/Names: " + known + ".");
+      }
+    material = found - material_names.begin();
+
+    // One expression per component; allow a 3-component default in 2D.
+    std::vector<std::string> expressions =
+      Utilities::split_string_list(prm.get("Initial velocity"), ';');
+    while (expressions.size() > dim && expressions.back() == "0")
+      expressions.pop_back();
+    if (expressions.size() != dim)
+      throw InputError(section_path + "/Initial velocity = '" +
+                       prm.get("Initial velocity") + "' must have " +
+                       std::to_string(dim) + " ';'-separated components.");
+    velocity = std::make_unique<FunctionParser<dim>>(dim);
+    try
+      {
+        velocity->initialize(FunctionParser<dim>::default_variable_names(),
+                             expressions,
+                             {{"pi", numbers::PI}});
+        velocity->value(center, 0);
+      }
+    catch (const ExceptionBase &e)
+      {
+        std::ostringstream info;
+        e.print_info(info);
+        throw InputError(section_path + "/Initial velocity = '" +
+                         prm.get("Initial velocity") +
+                         "' is not a valid expression: " + info.str());
+      }
+  }
+
+
+
+  template <int dim>
+  bool
+  Body<dim>::contains(const Point<dim> &x) const
+  {
+    switch (shape)
+      {
+        case Shape::box:
+          for (unsigned int d = 0; d < dim; ++d)
+            if (x[d] < lower_corner[d] || x[d] > upper_corner[d])
+              return false;
+          return true;
+        case Shape::ball:
+          return x.distance_square(center) <= radius * radius;
+        case Shape::polygon:
+          {
+            // Even-odd rule with a ray in +x direction.
+            bool               inside = false;
+            const unsigned int n      = polygon.size();
+            for (unsigned int i = 0, j = n - 1; i < n; j = i++)
+              {
+                const Point<dim> &a = polygon[i];
+                const Point<dim> &b = polygon[j];
+                if ((a[1] > x[1]) != (b[1] > x[1]) &&
+                    x[0] < (b[0] - a[0]) * (x[1] - a[1]) / (b[1] - a[1]) + a[0])
+                  inside = !inside;
+              }
+            return inside;
+          }
+      }
+    return false;
+  }
+
+
+
+  template <int dim>
+  Tensor<1, dim>
+  Body<dim>::initial_velocity(const Point<dim> &x) const
+  {
+    Tensor<1, dim> v;
+    for (unsigned int d = 0; d < dim; ++d)
+      v[d] = velocity->value(x, d);
+    return v;
+  }
+
+
+
+  template class Body<2>;
+  template class Body<3>;
+} // namespace mpm

@@ -1,0 +1,150 @@
+#include <deal.II/base/mpi.h>
+
+#include <mpm/boundary/dirichlet_conditions.h>
+#include <mpm/core/input_error.h>
+
+#include <algorithm>
+
+namespace mpm
+{
+  template <int dim>
+  void
+  DirichletConditions<dim>::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Boundary conditions");
+    prm.declare_entry("Fixed boundaries",
+                      "",
+                      Patterns::List(Patterns::Anything()),
+                      "Named boundaries (see Grid/Boundary names) whose "
+                      "nodes have zero velocity.");
+    prm.declare_entry("Slip boundaries",
+                      "",
+                      Patterns::List(Patterns::Anything()),
+                      "Named boundaries whose nodes have zero normal "
+                      "velocity and slide freely along the boundary.");
+    prm.leave_subsection();
+  }
+
+
+
+  template <int dim>
+  DirichletConditions<dim>::DirichletConditions(ParameterHandler &prm,
+                                                const BackgroundGrid<dim> &grid)
+  {
+    prm.enter_subsection("Boundary conditions");
+    fixed_names = Utilities::split_string_list(prm.get("Fixed boundaries"));
+    slip_names  = Utilities::split_string_list(prm.get("Slip boundaries"));
+    prm.leave_subsection();
+    for (const auto &name : fixed_names)
+      fixed_ids.push_back(
+        grid.boundary_id(name, "Boundary conditions/Fixed boundaries"));
+    for (const auto &name : slip_names)
+      slip_ids.push_back(
+        grid.boundary_id(name, "Boundary conditions/Slip boundaries"));
+  }
+
+
+
+  template <int dim>
+  void
+  DirichletConditions<dim>::setup(const GridNodes<dim> &nodes)
+  {
+    const DoFHandler<dim> &dof_handler = nodes.get_dof_handler();
+    const auto &           tria        = dof_handler.get_triangulation();
+
+    // Every named boundary must exist somewhere in the grid.
+    const std::vector<types::boundary_id> present = tria.get_boundary_ids();
+    auto check = [&](const std::vector<types::boundary_id> &ids,
+                     const std::vector<std::string> &       names,
+                     const std::string &                    entry) {
+      for (unsigned int i = 0; i < ids.size(); ++i)
+        if (std::find(present.begin(), present.end(), ids[i]) ==
+            present.end())
+          {
+            std::string list;
+            for (const auto id : present)
+              list += (list.empty() ? "" : ", ") + std::to_string(id);
+            throw InputError(entry + " names '" + names[i] + "' (boundary id " +
+                             std::to_string(ids[i]) +
+                             "), but no face of the grid has that id; the "
+                             "grid has ids " +
+                             list +
+                             ". For subdivided_hyper_rectangle, set colorize "
+                             "= true in Grid/Arguments.");
+          }
+    };
+    check(fixed_ids, fixed_names, "Boundary conditions/Fixed boundaries");
+    check(slip_ids, slip_names, "Boundary conditions/Slip boundaries");
+
+    constexpr unsigned int n_components =
+      GridNodes<dim>::NodalLayout::n_components;
+    const unsigned int n_local_nodes =
+      nodes.vector().get_partitioner()->locally_owned_size() / n_components +
+      nodes.vector().get_partitioner()->n_ghost_indices() / n_components;
+    constraint_of_node.assign(n_local_nodes, -1);
+    constraints.clear();
+
+    auto add_normal = [&](const unsigned int node, const Tensor<1, dim> &n) {
+      int &c = constraint_of_node[node / n_components];
+      if (c < 0)
+        {
+          c = constraints.size();
+          constraints.emplace_back();
+        }
+      Constraint &constraint = constraints[c];
+      if (constraint.n_normals == dim)
+        return;
+      Tensor<1, dim> residual = n;
+      for (unsigned int k = 0; k < constraint.n_normals; ++k)
+        residual -= (residual * constraint.normals[k]) * constraint.normals[k];
+      if (residual.norm() > 1e-6)
+        constraint.normals[constraint.n_normals++] = residual / residual.norm();
+    };
+
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        if (cell->is_artificial())
+          continue;
+        for (const unsigned int f : cell->face_indices())
+          {
+            if (!cell->at_boundary(f))
+              continue;
+            const auto               face = cell->face(f);
+            const types::boundary_id id   = face->boundary_id();
+            const bool               fixed =
+              std::find(fixed_ids.begin(), fixed_ids.end(), id) !=
+              fixed_ids.end();
+            const bool slip =
+              std::find(slip_ids.begin(), slip_ids.end(), id) != slip_ids.end();
+            if (!fixed && !slip)
+              continue;
+
+            Tensor<1, dim> normal;
+            if constexpr (dim == 2)
+              normal = cross_product_2d(face->vertex(1) - face->vertex(0));
+            else
+              normal = cross_product_3d(face->vertex(1) - face->vertex(0),
+                                        face->vertex(2) - face->vertex(0));
+            normal /= normal.norm();
+
+            for (const unsigned int v : face->vertex_indices())
+              {
+                const unsigned int node =
+                  nodes.local_index(face->vertex_dof_index(v, 0));
+                if (fixed)
+                  for (unsigned int d = 0; d < dim; ++d)
+                    {
+                      Tensor<1, dim> axis;
+                      axis[d] = 1.;
+                      add_normal(node, axis);
+                    }
+                else
+                  add_normal(node, normal);
+              }
+          }
+      }
+  }
+
+  template class DirichletConditions<2>;
+  template class DirichletConditions<3>;
+} // namespace mpm

@@ -1,0 +1,279 @@
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <mpm/core/application.h>
+#include <mpm/core/input_error.h>
+#include <mpm/core/named_sections.h>
+#include <mpm/core/simulator.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+namespace mpm
+{
+  using namespace dealii;
+
+  namespace
+  {
+    const char *usage =
+      "Usage: mpm [options] scene.prm\n"
+      "\n"
+      "Runs the scene described by a deal.II parameter file (see prm/).\n"
+      "\n"
+      "Options:\n"
+      "  --set 'Section/entry=value'  Override an entry of the file, e.g.\n"
+      "                               --set 'Time stepping/End time=2'.\n"
+      "                               Repeatable; applied after the file.\n"
+      "  --print-parameters           List every entry with its default and\n"
+      "                               documentation, then exit.\n"
+      "  --help                       Show this text.\n"
+      "\n"
+      "Run in parallel with: mpirun -np N mpm scene.prm\n";
+
+    struct Override
+    {
+      std::vector<std::string> path;
+      std::string              entry;
+      std::string              value;
+      std::string              text;
+    };
+
+    Override
+    parse_override(const std::string &text)
+    {
+      const auto equals = text.find('=');
+      if (equals == std::string::npos || equals == 0)
+        throw InputError("--set '" + text +
+                         "' must have the form 'Section/entry=value'.");
+      Override o;
+      o.text  = text;
+      o.value = text.substr(equals + 1);
+      std::vector<std::string> parts =
+        Utilities::split_string_list(text.substr(0, equals), '/');
+      o.entry = parts.back();
+      parts.pop_back();
+      o.path = parts;
+      return o;
+    }
+
+    /** Apply one override; false if the entry is not declared. */
+    bool
+    apply_override(ParameterHandler &prm, const Override &o, const bool strict)
+    {
+      unsigned int entered = 0;
+      try
+        {
+          for (const auto &section : o.path)
+            {
+              prm.enter_subsection(section);
+              ++entered;
+            }
+          prm.get(o.entry); // throws if the entry does not exist
+        }
+      catch (const ExceptionBase &)
+        {
+          for (unsigned int i = 0; i < entered; ++i)
+            prm.leave_subsection();
+          if (strict)
+            throw InputError("--set '" + o.text +
+                             "': there is no such entry (see mpm "
+                             "--print-parameters).");
+          return false;
+        }
+      try
+        {
+          prm.set(o.entry, o.value);
+        }
+      catch (const ExceptionBase &)
+        {
+          for (unsigned int i = 0; i < entered; ++i)
+            prm.leave_subsection();
+          std::ostringstream allowed;
+          prm.print_parameters(allowed, ParameterHandler::Short);
+          throw InputError("--set '" + o.text + "': '" + o.value +
+                           "' is not a valid value for this entry (see mpm "
+                           "--print-parameters for the allowed values).");
+        }
+      for (unsigned int i = 0; i < entered; ++i)
+        prm.leave_subsection();
+      return true;
+    }
+
+    /** Entries read before the rest can be declared. */
+    void
+    declare_first_pass(ParameterHandler &prm)
+    {
+      prm.declare_entry("Dimension",
+                        "2",
+                        Patterns::Integer(2, 3),
+                        "Space dimension of the scene: 2 (plane strain) or "
+                        "3.");
+      prm.enter_subsection("Materials");
+      NamedSections::declare_names(
+        prm,
+        "",
+        "Names of the materials of the scene. Each has a subsection of the "
+        "same name inside Materials.");
+      prm.leave_subsection();
+      prm.enter_subsection("Bodies");
+      NamedSections::declare_names(
+        prm,
+        "",
+        "Names of the bodies of the scene. Each has a subsection of the same "
+        "name inside Bodies.");
+      prm.leave_subsection();
+    }
+
+    template <int dim>
+    void
+    run_scene(ParameterHandler &              prm,
+              const std::vector<std::string> &material_names,
+              const std::vector<std::string> &body_names)
+    {
+      Simulator<dim> simulator(prm, material_names, body_names, MPI_COMM_WORLD);
+      simulator.run();
+    }
+
+    void
+    print_parameters()
+    {
+      ParameterHandler prm;
+      declare_first_pass(prm);
+      Simulator<2>::declare_parameters(prm, {"example material"},
+                                       {"example body"});
+      prm.print_parameters(std::cout, ParameterHandler::PRM);
+    }
+
+    std::string
+    message_of(const ExceptionBase &e)
+    {
+      std::ostringstream info;
+      e.print_info(info);
+      std::string text = info.str();
+      while (!text.empty() && (text.back() == '\n' || text.back() == ' '))
+        text.pop_back();
+      while (!text.empty() && (text.front() == '\n' || text.front() == ' '))
+        text.erase(text.begin());
+      return text;
+    }
+
+    int
+    run(const std::vector<std::string> &arguments)
+    {
+      std::vector<Override> overrides;
+      std::string           filename;
+      for (unsigned int i = 0; i < arguments.size(); ++i)
+        {
+          const std::string &a = arguments[i];
+          if (a == "--help" || a == "-h")
+            {
+              if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+                std::cout << usage;
+              return 0;
+            }
+          else if (a == "--print-parameters")
+            {
+              if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+                print_parameters();
+              return 0;
+            }
+          else if (a == "--set")
+            {
+              if (i + 1 == arguments.size())
+                throw InputError("--set needs an argument "
+                                 "'Section/entry=value'.");
+              overrides.push_back(parse_override(arguments[++i]));
+            }
+          else if (a.rfind("--set=", 0) == 0)
+            overrides.push_back(parse_override(a.substr(6)));
+          else if (a.rfind("-", 0) == 0)
+            throw InputError("unknown option '" + a + "'.\n" + usage);
+          else if (filename.empty())
+            filename = a;
+          else
+            throw InputError("more than one parameter file given ('" +
+                             filename + "' and '" + a + "').");
+        }
+      if (filename.empty())
+        throw InputError(std::string("no parameter file given.\n") + usage);
+      if (!std::ifstream(filename))
+        throw InputError("cannot open the parameter file '" + filename + "'.");
+
+      // First pass: the dimension and the names of materials and bodies.
+      ParameterHandler first;
+      declare_first_pass(first);
+      first.parse_input(filename, "", true);
+      for (const auto &o : overrides)
+        apply_override(first, o, false);
+      const unsigned int dim = first.get_integer("Dimension");
+      first.enter_subsection("Materials");
+      const auto material_names =
+        NamedSections::parse_names(first, "Materials");
+      first.leave_subsection();
+      first.enter_subsection("Bodies");
+      const auto body_names = NamedSections::parse_names(first, "Bodies");
+      first.leave_subsection();
+
+      // Second pass: everything, strictly.
+      ParameterHandler prm;
+      declare_first_pass(prm);
+      if (dim == 2)
+        Simulator<2>::declare_parameters(prm, material_names, body_names);
+      else
+        Simulator<3>::declare_parameters(prm, material_names, body_names);
+      prm.parse_input(filename);
+      for (const auto &o : overrides)
+        apply_override(prm, o, true);
+
+      if (dim == 2)
+        run_scene<2>(prm, material_names, body_names);
+      else
+        run_scene<3>(prm, material_names, body_names);
+      return 0;
+    }
+  } // namespace
+
+
+
+  int
+  run_command_line(const std::vector<std::string> &arguments)
+  {
+    const bool is_root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+    deal_II_exceptions::disable_abort_on_exception();
+    deal_II_exceptions::suppress_stacktrace_in_exceptions();
+    try
+      {
+        return run(arguments);
+      }
+    catch (const InputError &e)
+      {
+        if (is_root)
+          std::cerr << "mpm: input error: " << e.what() << std::endl;
+        return 2;
+      }
+    catch (const RunError &e)
+      {
+        if (is_root)
+          std::cerr << "\nmpm: run stopped: " << e.what() << std::endl;
+        return 3;
+      }
+    catch (const ExceptionBase &e)
+      {
+        // ParameterHandler reports bad files this way; its text names the
+        // line, the entry and the allowed values.
+        if (is_root)
+          std::cerr << "mpm: input error: " << message_of(e) << std::endl;
+        return 2;
+      }
+    catch (const std::exception &e)
+      {
+        std::cerr << "mpm: error: " << e.what() << std::endl;
+        if (Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
+          MPI_Abort(MPI_COMM_WORLD, 1);
+        return 1;
+      }
+  }
+} // namespace mpm

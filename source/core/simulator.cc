@@ -1,0 +1,396 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/fe/mapping_cartesian.h>
+#include <deal.II/fe/mapping_q.h>
+
+#include <mpm/core/input_error.h>
+#include <mpm/core/parse.h>
+#include <mpm/core/shared_position.h>
+#include <mpm/core/simulator.h>
+
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <sstream>
+
+namespace mpm
+{
+  template <int dim>
+  void
+  Simulator<dim>::declare_parameters(
+    ParameterHandler &              prm,
+    const std::vector<std::string> &material_names,
+    const std::vector<std::string> &body_names)
+  {
+    prm.declare_entry("Gravity",
+                      dim == 2 ? "0, 0" : "0, 0, 0",
+                      Patterns::Anything(),
+                      "Gravitational acceleration, one component per "
+                      "dimension, e.g. '0, -9.81' [m/s^2].");
+
+    BackgroundGrid<dim>::declare_parameters(prm);
+    DirichletConditions<dim>::declare_parameters(prm);
+
+    prm.enter_subsection("Time stepping");
+    prm.declare_entry("End time", "1", Patterns::Double(0.),
+                      "Simulated time at which the run ends [s].");
+    prm.declare_entry("Time step", "0", Patterns::Double(0.),
+                      "Fixed time step [s]. 0 chooses every step from the "
+                      "CFL number: dt = CFL h / (c_p + |v|_max), with h the "
+                      "smallest cell edge and c_p the largest p-wave speed. "
+                      "A fixed step above the stability limit h / (c_p + "
+                      "|v|_max) is refused.");
+    prm.declare_entry("CFL number", "0.3", Patterns::Double(0., 1.),
+                      "Fraction of the stability limit used by the automatic "
+                      "time step, 0 < CFL <= 1.");
+    prm.declare_entry("Update scheme", "MUSL",
+                      Patterns::Selection("USF|USL|MUSL"),
+                      "Order of the explicit update: USF (update stress "
+                      "first), USL (update stress last), MUSL (modified USL, "
+                      "Wieckowski 2004 section 3.5).");
+    prm.leave_subsection();
+
+    prm.enter_subsection("Output");
+    prm.declare_entry("Directory", "output", Patterns::Anything(),
+                      "Directory for all output; created if missing.");
+    prm.declare_entry("Interval", "0", Patterns::Double(0.),
+                      "Simulated time between ParaView snapshots. 0 writes "
+                      "the first and the last state only.");
+    prm.declare_entry("Write grid", "true", Patterns::Bool(),
+                      "Also write the background grid with nodal mass, "
+                      "velocity and acceleration.");
+    prm.declare_entry("Time series file", "time_series.csv",
+                      Patterns::Anything(),
+                      "CSV file (in the output directory) with time, "
+                      "energies, momentum, mass and tracked points.");
+    prm.declare_entry("Time series interval", "0", Patterns::Double(0.),
+                      "Simulated time between rows of the time series; 0 "
+                      "writes every step.");
+    prm.declare_entry("Tracked points", "", Patterns::Anything(),
+                      "Positions, ';'-separated; the material point nearest "
+                      "to each at the start is followed in the time series.");
+    prm.leave_subsection();
+
+    prm.enter_subsection("Materials");
+    for (const auto &name : material_names)
+      {
+        prm.enter_subsection(name);
+        Material::declare_parameters(prm);
+        prm.leave_subsection();
+      }
+    prm.leave_subsection();
+
+    prm.enter_subsection("Bodies");
+    for (const auto &name : body_names)
+      {
+        prm.enter_subsection(name);
+        Body<dim>::declare_parameters(prm);
+        prm.leave_subsection();
+      }
+    prm.leave_subsection();
+  }
+
+
+
+  template <int dim>
+  Simulator<dim>::Simulator(ParameterHandler &              prm,
+                            const std::vector<std::string> &material_names,
+                            const std::vector<std::string> &body_names,
+                            const MPI_Comm                  communicator)
+    : communicator(communicator)
+    , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
+    , timer(communicator, pcout, TimerOutput::never, TimerOutput::wall_times)
+    , triangulation(communicator)
+    , nodes(triangulation)
+  {
+    TimerOutput::Scope timer_section(timer, "setup");
+
+    gravity = parse_point<dim>(prm.get("Gravity"), "Gravity");
+
+    prm.enter_subsection("Time stepping");
+    end_time        = prm.get_double("End time");
+    fixed_time_step = prm.get_double("Time step");
+    cfl_number      = prm.get_double("CFL number");
+    const typename ExplicitIntegrator<dim>::Scheme scheme =
+      ExplicitIntegrator<dim>::parse_scheme(prm.get("Update scheme"));
+    prm.leave_subsection();
+    if (!(end_time > 0.))
+      throw InputError("Time stepping/End time must be positive.");
+    if (!(cfl_number > 0.))
+      throw InputError("Time stepping/CFL number must be positive.");
+
+    prm.enter_subsection("Output");
+    output_directory     = prm.get("Directory");
+    output_interval      = prm.get_double("Interval");
+    write_grid           = prm.get_bool("Write grid");
+    time_series_file     = prm.get("Time series file");
+    time_series_interval = prm.get_double("Time series interval");
+    tracked_positions =
+      parse_point_list<dim>(prm.get("Tracked points"), "Output/Tracked points");
+    prm.leave_subsection();
+
+    prm.enter_subsection("Materials");
+    for (const auto &name : material_names)
+      {
+        prm.enter_subsection(name);
+        materials.push_back(
+          Material::create(prm, name, "Materials/" + name));
+        prm.leave_subsection();
+      }
+    prm.leave_subsection();
+
+    prm.enter_subsection("Bodies");
+    for (const auto &name : body_names)
+      {
+        prm.enter_subsection(name);
+        bodies.emplace_back(prm, name, "Bodies/" + name, material_names);
+        prm.leave_subsection();
+      }
+    prm.leave_subsection();
+
+    grid = std::make_unique<BackgroundGrid<dim>>(prm);
+    dirichlet = std::make_unique<DirichletConditions<dim>>(prm, *grid);
+
+    // Set up the grid and everything on it.
+    grid->create(triangulation);
+    nodes.setup();
+    basis.reinit(nodes);
+    dirichlet->setup(nodes);
+    if (basis.grid_is_cartesian())
+      mapping = std::make_unique<MappingCartesian<dim>>();
+    else
+      mapping = std::make_unique<MappingQ<dim>>(1);
+
+    unsigned int n_internal = 0;
+    for (const auto &m : materials)
+      n_internal = std::max(n_internal, m->n_internal_variables());
+    points =
+      std::make_unique<MaterialPoints<dim>>(triangulation, *mapping, n_internal);
+    points->seed(bodies, materials);
+    if (points->n_global_points() == 0)
+      throw InputError("No body has a material point inside the grid: check "
+                       "the shapes in Bodies against Grid/Arguments.");
+
+    transfer = std::make_unique<GridTransfer<dim>>(
+      *points, basis, nodes, *dirichlet, gravity);
+    integrator =
+      std::make_unique<ExplicitIntegrator<dim>>(*transfer, materials, scheme, timer);
+
+    std::error_code error;
+    if (Utilities::MPI::this_mpi_process(communicator) == 0)
+      std::filesystem::create_directories(output_directory, error);
+    if (Utilities::MPI::max(error ? 1 : 0, communicator) != 0)
+      throw InputError("Output/Directory = '" + output_directory +
+                       "' cannot be created.");
+    vtu_output = std::make_unique<VtuOutput<dim>>(output_directory,
+                                                  write_grid,
+                                                  communicator);
+    time_series = std::make_unique<TimeSeries<dim>>(
+      output_directory + "/" + time_series_file, tracked_positions, gravity,
+      *points);
+
+    // A fixed time step must be stable for the initial state.
+    if (fixed_time_step > 0.)
+      {
+        double max_speed = 0.;
+        for (const auto &particle : points->handler())
+          max_speed = std::max(
+            max_speed,
+            PointLayout<dim>::get_velocity(particle.get_properties()).norm());
+        max_speed         = Utilities::MPI::max(max_speed, communicator);
+        const double limit = stable_time_step(max_speed) / cfl_number;
+        if (fixed_time_step > limit)
+          {
+            std::ostringstream message;
+            message << "Time stepping/Time step = " << fixed_time_step
+                    << " exceeds the explicit stability limit " << limit
+                    << " (smallest cell edge " << basis.minimum_cell_size()
+                    << " over p-wave speed plus fastest point). Use a smaller "
+                       "step, or 0 for an automatic one.";
+            throw InputError(message.str());
+          }
+      }
+  }
+
+
+
+  template <int dim>
+  double
+  Simulator<dim>::stable_time_step(const double max_speed) const
+  {
+    double wave_speed = 0.;
+    for (const auto &m : materials)
+      wave_speed = std::max(wave_speed, m->p_wave_speed());
+    return cfl_number * basis.minimum_cell_size() / (wave_speed + max_speed);
+  }
+
+
+
+  template <int dim>
+  void
+  Simulator<dim>::check_step(
+    const typename ExplicitIntegrator<dim>::StepReport &report,
+    const double                                         step_size)
+  {
+    // Every rank takes part, so every rank throws the same error.
+    auto describe = [&](const bool here, const Point<dim> &x) {
+      return shared_position(here, x, communicator);
+    };
+
+    const bool failed = Utilities::MPI::logical_or(report.failed, communicator);
+    if (failed)
+      {
+        const std::string where = describe(report.failed, report.failed_position);
+        std::string reason;
+        for (const std::string &r : Utilities::MPI::all_gather(
+               communicator, report.failed ? report.failure : std::string()))
+          if (reason.empty())
+            reason = r;
+        std::ostringstream message;
+        message << "The run went unstable in step " << step + 1 << " (t = "
+                << time + step_size << ", dt = " << step_size
+                << "): " << reason
+                << ", at " << where
+                << ". The last good state is in the output written so far. "
+                   "Try a smaller Time stepping/CFL number or Time step.";
+        throw RunError(message.str());
+      }
+
+    const double max_fraction =
+      Utilities::MPI::max(report.max_cell_fraction, communicator);
+    if (max_fraction > 1.)
+      {
+        const std::string where =
+          describe(report.max_cell_fraction == max_fraction,
+                   report.fastest_position);
+        std::ostringstream message;
+        message << "In step " << step + 1 << " (t = " << time + step_size
+                << ", dt = " << step_size << ") the material point at "
+                << where << " would move " << max_fraction
+                << " cell widths, more than the one cell a step allows. "
+                   "Reduce Time stepping/Time step or CFL number.";
+        throw RunError(message.str());
+      }
+  }
+
+
+
+  template <int dim>
+  void
+  Simulator<dim>::report_progress(const bool force)
+  {
+    if (Utilities::MPI::this_mpi_process(communicator) != 0)
+      return;
+    const double wall = wall_clock.wall_time();
+    const double eta  = time > 0. ? wall * (end_time - time) / time : 0.;
+    std::ostringstream line;
+    line << "step " << step << "  t = " << std::setprecision(4) << time
+         << " / " << end_time << "  dt = " << std::setprecision(3) << dt
+         << "  wall " << std::fixed << std::setprecision(1) << wall
+         << " s  ETA " << eta << " s";
+    if (isatty(STDOUT_FILENO))
+      {
+        if (force || wall - last_progress_wall > 0.25)
+          {
+            std::cout << '\r' << line.str() << "   " << (force ? "\n" : "")
+                      << std::flush;
+            last_progress_wall = wall;
+          }
+      }
+    else
+      {
+        const unsigned int decile =
+          static_cast<unsigned int>(10. * time / end_time + 1e-9);
+        if (decile > last_progress_decile || force)
+          {
+            std::cout << line.str() << std::endl;
+            last_progress_decile = decile;
+          }
+      }
+  }
+
+
+
+  template <int dim>
+  void
+  Simulator<dim>::run()
+  {
+    pcout << "mpm: " << dim << "D, " << triangulation.n_global_active_cells()
+          << " cells, " << points->n_global_points() << " material points, "
+          << Utilities::MPI::n_mpi_processes(communicator) << " rank(s)"
+          << std::endl;
+    wall_clock.restart();
+
+    double max_speed = 0.;
+    for (const auto &particle : points->handler())
+      max_speed = std::max(
+        max_speed, PointLayout<dim>::get_velocity(particle.get_properties()).norm());
+    max_speed = Utilities::MPI::max(max_speed, communicator);
+
+    {
+      TimerOutput::Scope t(timer, "output");
+      // The nodal values are written as they were last projected; project
+      // once so the first snapshot shows the initial grid state.
+      transfer->project_mass_momentum(false);
+      transfer->compute_nodal_velocity();
+      diagnostics = time_series->write_row(time, step, 0., *points);
+      vtu_output->write(time, *points, nodes, *mapping);
+    }
+    double next_output      = output_interval;
+    double next_time_series = time_series_interval;
+
+    const double time_tolerance = 1e-12 * end_time;
+    while (time < end_time - time_tolerance)
+      {
+        dt = (fixed_time_step > 0. ? fixed_time_step :
+                                     stable_time_step(max_speed));
+        if (time + dt > end_time - time_tolerance)
+          dt = end_time - time;
+
+        const auto report = integrator->step(dt);
+        check_step(report, dt);
+        {
+          TimerOutput::Scope t(timer, "sort points");
+          points->sort();
+        }
+        time += dt;
+        ++step;
+        max_speed = Utilities::MPI::max(report.max_speed, communicator);
+
+        const bool at_end = !(time < end_time - time_tolerance);
+        if (at_end || time_series_interval == 0. ||
+            time >= next_time_series - time_tolerance)
+          {
+            TimerOutput::Scope t(timer, "time series");
+            diagnostics = time_series->write_row(time, step, dt, *points);
+            while (time_series_interval > 0. &&
+                   next_time_series <= time + time_tolerance)
+              next_time_series += time_series_interval;
+          }
+        if ((output_interval > 0. && time >= next_output - time_tolerance) ||
+            at_end)
+          {
+            TimerOutput::Scope t(timer, "output");
+            vtu_output->write(time, *points, nodes, *mapping);
+            while (output_interval > 0. &&
+                   next_output <= time + time_tolerance)
+              next_output += output_interval;
+          }
+        report_progress(at_end);
+      }
+
+    const double wall = wall_clock.wall_time();
+    pcout << "mpm: " << step << " steps, "
+          << static_cast<double>(points->n_global_points()) * step / wall /
+               Utilities::MPI::n_mpi_processes(communicator)
+          << " particle-steps per second per rank, " << wall
+          << " s wall time" << std::endl;
+    timer.print_wall_time_statistics(communicator);
+  }
+
+
+
+  template class Simulator<2>;
+  template class Simulator<3>;
+} // namespace mpm

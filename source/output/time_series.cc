@@ -1,0 +1,128 @@
+#include <deal.II/base/mpi.h>
+
+#include <mpm/core/input_error.h>
+#include <mpm/output/time_series.h>
+
+#include <iomanip>
+#include <limits>
+
+namespace mpm
+{
+  template <int dim>
+  TimeSeries<dim>::TimeSeries(const std::string &            filename,
+                              const std::vector<Point<dim>> &tracked_positions,
+                              const Tensor<1, dim> &         gravity,
+                              const MaterialPoints<dim> &    points)
+    : gravity(gravity)
+    , communicator(points.get_communicator())
+  {
+    // The tracked point is the nearest one; ties go to the smaller id.
+    for (const Point<dim> &target : tracked_positions)
+      {
+        std::pair<double, types::particle_index> best(
+          std::numeric_limits<double>::max(),
+          std::numeric_limits<types::particle_index>::max());
+        for (const auto &particle : points.handler())
+          best = std::min(best,
+                          std::make_pair(particle.get_location().distance(target),
+                                         particle.get_id()));
+        const double distance = Utilities::MPI::min(best.first, communicator);
+        const types::particle_index id = Utilities::MPI::min(
+          best.first == distance ?
+            best.second :
+            std::numeric_limits<types::particle_index>::max(),
+          communicator);
+        tracked_ids.push_back(id);
+      }
+
+    const bool is_root = Utilities::MPI::this_mpi_process(communicator) == 0;
+    if (is_root)
+      {
+        file.open(filename);
+        if (!file)
+          throw InputError("Output/Time series file: cannot write '" +
+                           filename + "'.");
+        const char *axes = "xyz";
+        file << "time,step,dt,kinetic_energy,strain_energy,"
+                "gravitational_energy,total_energy";
+        for (unsigned int d = 0; d < dim; ++d)
+          file << ",momentum_" << axes[d];
+        file << ",mass";
+        for (unsigned int k = 0; k < tracked_ids.size(); ++k)
+          {
+            for (unsigned int d = 0; d < dim; ++d)
+              file << ",point" << k << "_" << axes[d];
+            for (unsigned int d = 0; d < dim; ++d)
+              file << ",point" << k << "_v" << axes[d];
+          }
+        file << '\n';
+        file << std::setprecision(12);
+      }
+  }
+
+
+
+  template <int dim>
+  Diagnostics<dim>
+  TimeSeries<dim>::write_row(const double               time,
+                             const unsigned int         step,
+                             const double               dt,
+                             const MaterialPoints<dim> &points)
+  {
+    using Layout = PointLayout<dim>;
+    // Layout of the reduced buffer: 4 scalars, momentum, then 2 dim values
+    // per tracked point (only its owner adds them).
+    const unsigned int  n_tracked = tracked_ids.size();
+    std::vector<double> sums(4 + dim + 2 * dim * n_tracked, 0.);
+    for (const auto &particle : points.handler())
+      {
+        const ArrayView<const double> p = particle.get_properties();
+        const double                  m = p[Layout::mass];
+        const Tensor<1, dim>          v = Layout::get_velocity(p);
+        const Point<dim> &            x = particle.get_location();
+        sums[0] += 0.5 * m * v.norm_square();
+        sums[1] += p[Layout::work_density] * p[Layout::reference_volume];
+        sums[2] -= m * (gravity * x);
+        sums[3] += m;
+        for (unsigned int d = 0; d < dim; ++d)
+          sums[4 + d] += m * v[d];
+        for (unsigned int k = 0; k < n_tracked; ++k)
+          if (particle.get_id() == tracked_ids[k])
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                sums[4 + dim + 2 * dim * k + d]       = x[d];
+                sums[4 + dim + 2 * dim * k + dim + d] = v[d];
+              }
+      }
+    MPI_Allreduce(MPI_IN_PLACE, sums.data(), sums.size(), MPI_DOUBLE, MPI_SUM,
+                  communicator);
+
+    Diagnostics<dim> result;
+    result.kinetic_energy       = sums[0];
+    result.strain_energy        = sums[1];
+    result.gravitational_energy = sums[2];
+    result.mass                 = sums[3];
+    for (unsigned int d = 0; d < dim; ++d)
+      result.momentum[d] = sums[4 + d];
+
+    if (file.is_open())
+      {
+        file << time << ',' << step << ',' << dt << ','
+             << result.kinetic_energy << ',' << result.strain_energy << ','
+             << result.gravitational_energy << ',' << result.total_energy();
+        for (unsigned int d = 0; d < dim; ++d)
+          file << ',' << result.momentum[d];
+        file << ',' << result.mass;
+        for (unsigned int k = 4 + dim; k < sums.size(); ++k)
+          file << ',' << sums[k];
+        file << '\n';
+        file.flush();
+      }
+    return result;
+  }
+
+
+
+  template class TimeSeries<2>;
+  template class TimeSeries<3>;
+} // namespace mpm

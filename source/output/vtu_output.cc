@@ -1,0 +1,102 @@
+#include <deal.II/base/data_out_base.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/numerics/data_out.h>
+#include <deal.II/particles/data_out.h>
+
+#include <mpm/output/vtu_output.h>
+
+#include <filesystem>
+#include <fstream>
+
+namespace mpm
+{
+  template <int dim>
+  VtuOutput<dim>::VtuOutput(const std::string &directory,
+                            const bool         write_grid,
+                            const MPI_Comm     communicator)
+    : directory(directory.empty() || directory.back() == '/' ? directory :
+                                                                 directory + "/")
+    , write_grid(write_grid)
+    , communicator(communicator)
+  {}
+
+
+
+  template <int dim>
+  void
+  VtuOutput<dim>::write(const double               time,
+                        const MaterialPoints<dim> &points,
+                        const GridNodes<dim> &     nodes,
+                        const Mapping<dim> &       mapping)
+  {
+    using Layout = PointLayout<dim>;
+    const bool is_root = Utilities::MPI::this_mpi_process(communicator) == 0;
+
+    {
+      std::vector<DataComponentInterpretation::DataComponentInterpretation>
+        interpretation(
+          Layout::n_properties(points.n_internal_variables()),
+          DataComponentInterpretation::component_is_scalar);
+      for (unsigned int d = 0; d < dim; ++d)
+        interpretation[Layout::velocity + d] =
+          DataComponentInterpretation::component_is_part_of_vector;
+
+      Particles::DataOut<dim> data_out;
+      data_out.build_patches(points.handler(),
+                             Layout::names(points.n_internal_variables()),
+                             interpretation);
+      const std::string name = data_out.write_vtu_with_pvtu_record(
+        directory, "points", counter, communicator, 5);
+      point_records.emplace_back(time, name);
+      if (is_root)
+        {
+          std::ofstream pvd(directory + "points.pvd");
+          DataOutBase::write_pvd_record(pvd, point_records);
+        }
+    }
+
+    if (write_grid)
+      {
+        using NodalLayout = typename GridNodes<dim>::NodalLayout;
+        std::vector<std::string> names(NodalLayout::n_components);
+        std::vector<DataComponentInterpretation::DataComponentInterpretation>
+          interpretation(
+            NodalLayout::n_components,
+            DataComponentInterpretation::component_is_part_of_vector);
+        names[NodalLayout::mass] = "nodal_mass";
+        interpretation[NodalLayout::mass] =
+          DataComponentInterpretation::component_is_scalar;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            names[NodalLayout::velocity + d] = "nodal_velocity";
+            names[NodalLayout::force + d]    = "nodal_acceleration";
+          }
+
+        DataOut<dim> data_out;
+        data_out.attach_dof_handler(nodes.get_dof_handler());
+        data_out.add_data_vector(nodes.vector(),
+                                 names,
+                                 DataOut<dim>::type_dof_data,
+                                 interpretation);
+        Vector<float> subdomain(
+          nodes.get_dof_handler().get_triangulation().n_active_cells());
+        subdomain = Utilities::MPI::this_mpi_process(communicator);
+        data_out.add_data_vector(subdomain, "subdomain");
+        data_out.build_patches(mapping);
+        const std::string name = data_out.write_vtu_with_pvtu_record(
+          directory, "grid", counter, communicator, 5);
+        grid_records.emplace_back(time, name);
+        if (is_root)
+          {
+            std::ofstream pvd(directory + "grid.pvd");
+            DataOutBase::write_pvd_record(pvd, grid_records);
+          }
+      }
+    ++counter;
+  }
+
+
+
+  template class VtuOutput<2>;
+  template class VtuOutput<3>;
+} // namespace mpm

@@ -1,0 +1,182 @@
+#include <deal.II/base/mpi.h>
+
+#include <mpm/core/input_error.h>
+#include <mpm/core/shared_position.h>
+#include <mpm/points/material_points.h>
+
+#include <sstream>
+
+namespace mpm
+{
+  template <int dim>
+  std::vector<std::string>
+  PointLayout<dim>::names(const unsigned int n_internal_variables)
+  {
+    std::vector<std::string> n(n_properties(n_internal_variables));
+    n[mass]             = "mass";
+    n[reference_volume] = "reference_volume";
+    for (unsigned int d = 0; d < dim; ++d)
+      n[velocity + d] = "velocity";
+    const char *axes = "xyz";
+    for (unsigned int i = 0; i < dim; ++i)
+      for (unsigned int j = 0; j < dim; ++j)
+        n[deformation_gradient + i * dim + j] =
+          std::string("F_") + axes[i] + axes[j];
+    const char *stress_names[6] = {
+      "stress_xx", "stress_yy", "stress_zz", "stress_xy", "stress_xz",
+      "stress_yz"};
+    for (unsigned int k = 0; k < 6; ++k)
+      n[stress + k] = stress_names[k];
+    n[work_density] = "work_density";
+    n[body_id]      = "body_id";
+    n[material_id]  = "material_id";
+    for (unsigned int k = 0; k < n_internal_variables; ++k)
+      n[internal_variables + k] = "internal_" + std::to_string(k);
+    return n;
+  }
+
+
+
+  template <int dim>
+  MaterialPoints<dim>::MaterialPoints(
+    const parallel::distributed::Triangulation<dim> &tria,
+    const Mapping<dim> &                             mapping,
+    const unsigned int                               n_internal_variables)
+    : triangulation(tria)
+    , mapping(mapping)
+    , particle_handler(tria,
+                       mapping,
+                       Layout::n_properties(n_internal_variables))
+    , n_internal(n_internal_variables)
+  {
+    particle_handler.signals.particle_lost.connect(
+      [this](const typename Particles::ParticleIterator<dim> &particle,
+             const typename Triangulation<dim>::active_cell_iterator &) {
+        lost_positions.push_back(particle->get_location());
+      });
+  }
+
+
+
+  template <int dim>
+  void
+  MaterialPoints<dim>::seed(
+    const std::vector<Body<dim>> &                bodies,
+    const std::vector<std::unique_ptr<Material>> &materials)
+  {
+    struct Candidate
+    {
+      Point<dim>                                       x;
+      Point<dim>                                       reference;
+      typename Triangulation<dim>::active_cell_iterator cell;
+      double                                           volume;
+      unsigned int                                     body;
+    };
+    std::vector<Candidate> candidates;
+
+    for (const auto &cell : triangulation.active_cell_iterators())
+      {
+        if (!cell->is_locally_owned())
+          continue;
+        const double cell_volume = cell->measure();
+        for (unsigned int b = 0; b < bodies.size(); ++b)
+          {
+            const unsigned int n = bodies[b].points_per_cell_direction();
+            unsigned int       n_sub = 1;
+            for (unsigned int d = 0; d < dim; ++d)
+              n_sub *= n;
+            for (unsigned int k = 0; k < n_sub; ++k)
+              {
+                Point<dim>   reference;
+                unsigned int rest = k;
+                for (unsigned int d = 0; d < dim; ++d)
+                  {
+                    reference[d] = ((rest % n) + 0.5) / n;
+                    rest /= n;
+                  }
+                const Point<dim> x =
+                  mapping.transform_unit_to_real_cell(cell, reference);
+                if (!bodies[b].contains(x))
+                  continue;
+                bool owned_by_earlier_body = false;
+                for (unsigned int e = 0; e < b; ++e)
+                  if (bodies[e].contains(x))
+                    owned_by_earlier_body = true;
+                if (owned_by_earlier_body)
+                  continue;
+                // Each point gets an equal share of the cell's volume.
+                candidates.push_back({x, reference, cell, cell_volume / n_sub,
+                                      b});
+              }
+          }
+      }
+
+    const MPI_Comm comm = get_communicator();
+    types::particle_index       n_local  = candidates.size();
+    types::particle_index       first_id = 0;
+    MPI_Exscan(&n_local, &first_id, 1, MPI_UINT64_T, MPI_SUM, comm);
+    if (Utilities::MPI::this_mpi_process(comm) == 0)
+      first_id = 0;
+
+    std::vector<double> properties(
+      Layout::n_properties(n_internal), 0.);
+    for (unsigned int i = 0; i < candidates.size(); ++i)
+      {
+        const Candidate &c        = candidates[i];
+        const Material & material = *materials[bodies[c.body].material_index()];
+        std::fill(properties.begin(), properties.end(), 0.);
+        properties[Layout::mass]             = material.density() * c.volume;
+        properties[Layout::reference_volume] = c.volume;
+        const Tensor<1, dim> v               = bodies[c.body].initial_velocity(c.x);
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            properties[Layout::velocity + d] = v[d];
+            properties[Layout::deformation_gradient + d * dim + d] = 1.;
+          }
+        properties[Layout::body_id]     = c.body;
+        properties[Layout::material_id] = bodies[c.body].material_index();
+        particle_handler.insert_particle(
+          c.x,
+          c.reference,
+          first_id + i,
+          c.cell,
+          ArrayView<const double>(properties.data(), properties.size()));
+      }
+    particle_handler.update_cached_numbers();
+  }
+
+
+
+  template <int dim>
+  void
+  MaterialPoints<dim>::sort()
+  {
+    lost_positions.clear();
+    particle_handler.sort_particles_into_subdomains_and_cells();
+
+    const MPI_Comm comm = get_communicator();
+    const unsigned int n_lost =
+      Utilities::MPI::sum(static_cast<unsigned int>(lost_positions.size()),
+                          comm);
+    if (n_lost > 0)
+      {
+        const std::string where = shared_position(
+          !lost_positions.empty(),
+          lost_positions.empty() ? Point<dim>() : lost_positions.front(),
+          comm);
+        std::ostringstream message;
+        message << n_lost << " material point(s) left the background grid, "
+                << "the first at " << where;
+        message << ". Make the grid cover every place the material can "
+                   "reach, or fix the boundary there.";
+        throw RunError(message.str());
+      }
+  }
+
+
+
+  template struct PointLayout<2>;
+  template struct PointLayout<3>;
+  template class MaterialPoints<2>;
+  template class MaterialPoints<3>;
+} // namespace mpm

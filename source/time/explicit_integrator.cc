@@ -1,0 +1,270 @@
+#include <mpm/core/input_error.h>
+#include <mpm/time/explicit_integrator.h>
+
+#include <cmath>
+
+namespace mpm
+{
+  template <int dim>
+  typename ExplicitIntegrator<dim>::Scheme
+  ExplicitIntegrator<dim>::parse_scheme(const std::string &name)
+  {
+    if (name == "USF")
+      return Scheme::USF;
+    if (name == "USL")
+      return Scheme::USL;
+    if (name == "MUSL")
+      return Scheme::MUSL;
+    throw InputError("Time stepping/Update scheme = '" + name +
+                     "' is not one of USF, USL, MUSL.");
+  }
+
+
+
+  template <int dim>
+  ExplicitIntegrator<dim>::ExplicitIntegrator(
+    GridTransfer<dim> &                           transfer,
+    const std::vector<std::unique_ptr<Material>> &materials,
+    const Scheme                                  scheme,
+    TimerOutput &                                 timer)
+    : transfer(transfer)
+    , materials(materials)
+    , scheme(scheme)
+    , timer(timer)
+  {}
+
+
+
+  template <int dim>
+  typename ExplicitIntegrator<dim>::StepReport
+  ExplicitIntegrator<dim>::step(const double dt)
+  {
+    StepReport report;
+    switch (scheme)
+      {
+        case Scheme::MUSL:
+          {
+            // [W] 3.5, points 2-5: nodal v^t, forces, accelerations.
+            {
+              TimerOutput::Scope t(timer, "P2G");
+              transfer.project_mass_momentum(true);
+            }
+            {
+              TimerOutput::Scope t(timer, "nodal solve");
+              transfer.compute_nodal_acceleration(dt, false);
+            }
+            // Point 6: V_p += dt N a.
+            {
+              TimerOutput::Scope t(timer, "G2P");
+              advance_point_velocities(dt);
+            }
+            // Point 7: v^L from the new point velocities.
+            {
+              TimerOutput::Scope t(timer, "P2G");
+              transfer.project_momentum();
+            }
+            {
+              TimerOutput::Scope t(timer, "nodal solve");
+              transfer.compute_nodal_velocity();
+            }
+            // Points 8-9: stress and positions from v^L.
+            {
+              TimerOutput::Scope t(timer, "G2P");
+              update_points(dt, true, report);
+            }
+            break;
+          }
+        case Scheme::USL:
+          {
+            {
+              TimerOutput::Scope t(timer, "P2G");
+              transfer.project_mass_momentum(true);
+            }
+            {
+              TimerOutput::Scope t(timer, "nodal solve");
+              transfer.compute_nodal_velocity();
+              transfer.compute_nodal_acceleration(dt, true);
+            }
+            {
+              TimerOutput::Scope t(timer, "G2P");
+              advance_and_move(dt, report);
+              update_points(dt, false, report);
+            }
+            break;
+          }
+        case Scheme::USF:
+          {
+            {
+              TimerOutput::Scope t(timer, "P2G");
+              transfer.project_mass_momentum(false);
+            }
+            {
+              TimerOutput::Scope t(timer, "nodal solve");
+              transfer.compute_nodal_velocity();
+            }
+            {
+              TimerOutput::Scope t(timer, "G2P");
+              update_points(dt, false, report);
+            }
+            {
+              TimerOutput::Scope t(timer, "P2G");
+              transfer.project_force();
+            }
+            {
+              TimerOutput::Scope t(timer, "nodal solve");
+              transfer.compute_nodal_acceleration(dt, true);
+            }
+            {
+              TimerOutput::Scope t(timer, "G2P");
+              advance_and_move(dt, report);
+            }
+            break;
+          }
+      }
+    return report;
+  }
+
+
+
+  template <int dim>
+  void
+  ExplicitIntegrator<dim>::advance_point_velocities(const double dt)
+  {
+    transfer.for_each_point([&](Particle &particle, const Support<dim> &support) {
+      const Tensor<1, dim> a = transfer.interpolate(support, NodalLayout::force);
+      const ArrayView<double> p = particle->get_properties();
+      for (unsigned int d = 0; d < dim; ++d)
+        p[Layout::velocity + d] += dt * a[d];
+    });
+  }
+
+
+
+  template <int dim>
+  void
+  ExplicitIntegrator<dim>::advance_and_move(const double dt,
+                                            StepReport & report)
+  {
+    transfer.for_each_point([&](Particle &particle, const Support<dim> &support) {
+      const Tensor<1, dim> a = transfer.interpolate(support, NodalLayout::force);
+      const ArrayView<double> p = particle->get_properties();
+      for (unsigned int d = 0; d < dim; ++d)
+        p[Layout::velocity + d] += dt * a[d];
+      move(particle, support, dt, report);
+    });
+  }
+
+
+
+  template <int dim>
+  void
+  ExplicitIntegrator<dim>::update_points(const double dt,
+                                         const bool   move_points,
+                                         StepReport & report)
+  {
+    transfer.for_each_point([&](Particle &particle, const Support<dim> &support) {
+      update_stress(particle, support, dt, report);
+      if (move_points)
+        move(particle, support, dt, report);
+    });
+  }
+
+
+
+  template <int dim>
+  void
+  ExplicitIntegrator<dim>::update_stress(Particle &          particle,
+                                         const Support<dim> &support,
+                                         const double        dt,
+                                         StepReport &        report)
+  {
+    const ArrayView<double> p = particle->get_properties();
+    const Tensor<2, dim>    L = transfer.velocity_gradient(support);
+    const Tensor<2, dim>    F_old = Layout::get_deformation_gradient(p);
+    const Tensor<2, dim>    F_new =
+      (unit_symmetric_tensor<dim>() + dt * L) * F_old;
+    const double J_old = determinant(F_old);
+    const double J_new = determinant(F_new);
+    if (!(J_new > 0.))
+      {
+        if (!report.failed)
+          {
+            report.failed          = true;
+            report.failed_position = particle->get_location();
+            report.failure =
+              "a material point was inverted (det F = " +
+              std::to_string(J_new) + ")";
+          }
+        return;
+      }
+
+    StepKinematics kinematics;
+    kinematics.F_old             = Layout::embed(F_old, 1.);
+    kinematics.F_new             = Layout::embed(F_new, 1.);
+    kinematics.velocity_gradient = Layout::embed(L, 0.);
+    kinematics.dt                = dt;
+
+    SymmetricTensor<2, 3>       stress     = Layout::get_stress(p);
+    const SymmetricTensor<2, 3> stress_old = stress;
+    const Material &material =
+      *materials[static_cast<unsigned int>(p[Layout::material_id])];
+    material.update_stress(kinematics,
+                           stress,
+                           ArrayView<double>(&p[Layout::internal_variables],
+                                             material.n_internal_variables()));
+
+    // Stress power per reference volume, tau : D with tau = J sigma, by the
+    // trapezoidal rule.
+    const SymmetricTensor<2, 3> D = symmetrize(kinematics.velocity_gradient);
+    p[Layout::work_density] +=
+      0.5 * dt * (J_old * stress_old + J_new * stress) * D;
+
+    Layout::set_deformation_gradient(p, F_new);
+    Layout::set_stress(p, stress);
+  }
+
+
+
+  template <int dim>
+  void
+  ExplicitIntegrator<dim>::move(Particle &          particle,
+                                const Support<dim> &support,
+                                const double        dt,
+                                StepReport &        report)
+  {
+    const Tensor<1, dim> v =
+      transfer.interpolate(support, NodalLayout::velocity);
+    const ArrayView<const double> p = particle->get_properties();
+    const Point<dim>              x = particle->get_location();
+
+    double speed_square = 0.;
+    double fraction     = 0.;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        speed_square += p[Layout::velocity + d] * p[Layout::velocity + d];
+        fraction = std::max(fraction, std::abs(dt * v[d]) / support.spacing);
+      }
+    if (!std::isfinite(speed_square) || !std::isfinite(fraction))
+      {
+        if (!report.failed)
+          {
+            report.failed          = true;
+            report.failed_position = x;
+            report.failure         = "a material point has a non-finite velocity";
+          }
+        return;
+      }
+    if (fraction > report.max_cell_fraction)
+      {
+        report.max_cell_fraction = fraction;
+        report.fastest_position  = x;
+      }
+    report.max_speed = std::max(report.max_speed, std::sqrt(speed_square));
+    particle->set_location(x + dt * v);
+  }
+
+
+
+  template class ExplicitIntegrator<2>;
+  template class ExplicitIntegrator<3>;
+} // namespace mpm
