@@ -5,6 +5,7 @@
 #include <mpm/core/parse.h>
 
 #include <algorithm>
+#include <iostream>
 #include <sstream>
 
 namespace mpm
@@ -118,15 +119,21 @@ namespace mpm
                        prm.get("Initial velocity") + "' must have " +
                        std::to_string(dim) + " ';'-separated components.");
     velocity = std::make_unique<FunctionParser<dim>>(dim);
+    // muparser writes its own report of a bad expression to std::cerr; the
+    // message below says the same once, naming the entry.
+    std::ostringstream    parser_report;
+    std::streambuf *const cerr_buffer = std::cerr.rdbuf(parser_report.rdbuf());
     try
       {
         velocity->initialize(FunctionParser<dim>::default_variable_names(),
                              expressions,
                              {{"pi", numbers::PI}});
         velocity->value(center, 0);
+        std::cerr.rdbuf(cerr_buffer);
       }
     catch (const ExceptionBase &e)
       {
+        std::cerr.rdbuf(cerr_buffer);
         std::ostringstream info;
         e.print_info(info);
         throw InputError(section_path + "/Initial velocity = '" +

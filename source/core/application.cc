@@ -41,6 +41,19 @@ namespace mpm
       std::string              text;
     };
 
+    std::string
+    message_of(const ExceptionBase &e)
+    {
+      std::ostringstream info;
+      e.print_info(info);
+      std::string text = info.str();
+      while (!text.empty() && (text.back() == '\n' || text.back() == ' '))
+        text.pop_back();
+      while (!text.empty() && (text.front() == '\n' || text.front() == ' '))
+        text.erase(text.begin());
+      return text;
+    }
+
     Override
     parse_override(const std::string &text)
     {
@@ -59,47 +72,37 @@ namespace mpm
       return o;
     }
 
-    /** Apply one override; false if the entry is not declared. */
-    bool
+    /**
+     * Apply one override. An entry that is not declared is an error if
+     * `strict`, and skipped otherwise (the first pass declares only a few).
+     */
+    void
     apply_override(ParameterHandler &prm, const Override &o, const bool strict)
     {
-      unsigned int entered = 0;
+      for (const auto &section : o.path)
+        prm.enter_subsection(section);
       try
         {
-          for (const auto &section : o.path)
-            {
-              prm.enter_subsection(section);
-              ++entered;
-            }
-          prm.get(o.entry); // throws if the entry does not exist
+          prm.set(o.entry, o.value);
         }
-      catch (const ExceptionBase &)
+      catch (const ParameterHandler::ExcEntryUndeclared &)
         {
-          for (unsigned int i = 0; i < entered; ++i)
+          for (unsigned int i = 0; i < o.path.size(); ++i)
             prm.leave_subsection();
           if (strict)
             throw InputError("--set '" + o.text +
                              "': there is no such entry (see mpm "
                              "--print-parameters).");
-          return false;
+          return;
         }
-      try
+      catch (const ExceptionBase &e)
         {
-          prm.set(o.entry, o.value);
-        }
-      catch (const ExceptionBase &)
-        {
-          for (unsigned int i = 0; i < entered; ++i)
+          for (unsigned int i = 0; i < o.path.size(); ++i)
             prm.leave_subsection();
-          std::ostringstream allowed;
-          prm.print_parameters(allowed, ParameterHandler::Short);
-          throw InputError("--set '" + o.text + "': '" + o.value +
-                           "' is not a valid value for this entry (see mpm "
-                           "--print-parameters for the allowed values).");
+          throw InputError("--set '" + o.text + "': " + message_of(e));
         }
-      for (unsigned int i = 0; i < entered; ++i)
+      for (unsigned int i = 0; i < o.path.size(); ++i)
         prm.leave_subsection();
-      return true;
     }
 
     /** Entries read before the rest can be declared. */
@@ -145,19 +148,6 @@ namespace mpm
       Simulator<2>::declare_parameters(prm, {"example material"},
                                        {"example body"});
       prm.print_parameters(std::cout, ParameterHandler::PRM);
-    }
-
-    std::string
-    message_of(const ExceptionBase &e)
-    {
-      std::ostringstream info;
-      e.print_info(info);
-      std::string text = info.str();
-      while (!text.empty() && (text.back() == '\n' || text.back() == ' '))
-        text.pop_back();
-      while (!text.empty() && (text.front() == '\n' || text.front() == ' '))
-        text.erase(text.begin());
-      return text;
     }
 
     int
@@ -257,7 +247,7 @@ namespace mpm
     catch (const RunError &e)
       {
         if (is_root)
-          std::cerr << "\nmpm: run stopped: " << e.what() << std::endl;
+          std::cerr << "mpm: run stopped: " << e.what() << std::endl;
         return 3;
       }
     catch (const ExceptionBase &e)

@@ -100,7 +100,10 @@ namespace mpm
                             const MPI_Comm                  communicator)
     : communicator(communicator)
     , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
-    , timer(communicator, pcout, TimerOutput::never, TimerOutput::wall_times)
+    // Not bound to the communicator: a run that stops with an error must not
+    // wait for the other ranks in the destructor. run() prints the
+    // statistics over all ranks.
+    , timer(pcout, TimerOutput::never, TimerOutput::wall_times)
     , triangulation(communicator)
     , nodes(triangulation)
   {
@@ -262,7 +265,7 @@ namespace mpm
     if (max_fraction > 1.)
       {
         const std::string where =
-          describe(report.max_cell_fraction == max_fraction,
+          describe(report.max_cell_fraction >= max_fraction * (1. - 1e-12),
                    report.fastest_position);
         std::ostringstream message;
         message << "In step " << step + 1 << " (t = " << time + step_size

@@ -4,6 +4,7 @@
 #include <mpm/core/shared_position.h>
 #include <mpm/points/material_points.h>
 
+#include <algorithm>
 #include <sstream>
 
 namespace mpm
@@ -112,11 +113,11 @@ namespace mpm
       }
 
     const MPI_Comm comm = get_communicator();
-    types::particle_index       n_local  = candidates.size();
-    types::particle_index       first_id = 0;
+    const std::uint64_t n_local  = candidates.size();
+    std::uint64_t       first_id = 0;
     MPI_Exscan(&n_local, &first_id, 1, MPI_UINT64_T, MPI_SUM, comm);
     if (Utilities::MPI::this_mpi_process(comm) == 0)
-      first_id = 0;
+      first_id = 0; // MPI_Exscan leaves rank 0's result undefined
 
     std::vector<double> properties(
       Layout::n_properties(n_internal), 0.);
@@ -160,10 +161,13 @@ namespace mpm
                           comm);
     if (n_lost > 0)
       {
-        const std::string where = shared_position(
-          !lost_positions.empty(),
-          lost_positions.empty() ? Point<dim>() : lost_positions.front(),
-          comm);
+        Point<dim> first;
+        if (!lost_positions.empty())
+          first = *std::min_element(lost_positions.begin(),
+                                    lost_positions.end(),
+                                    lexicographically_less<dim>);
+        const std::string where =
+          shared_position(!lost_positions.empty(), first, comm);
         std::ostringstream message;
         message << n_lost << " material point(s) left the background grid, "
                 << "the first at " << where;

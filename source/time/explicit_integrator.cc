@@ -1,4 +1,5 @@
 #include <mpm/core/input_error.h>
+#include <mpm/core/shared_position.h>
 #include <mpm/time/explicit_integrator.h>
 
 #include <cmath>
@@ -187,7 +188,9 @@ namespace mpm
     const double J_new = determinant(F_new);
     if (!(J_new > 0.))
       {
-        if (!report.failed)
+        if (!report.failed ||
+            lexicographically_less(particle->get_location(),
+                                   report.failed_position))
           {
             report.failed          = true;
             report.failed_position = particle->get_location();
@@ -246,7 +249,7 @@ namespace mpm
       }
     if (!std::isfinite(speed_square) || !std::isfinite(fraction))
       {
-        if (!report.failed)
+        if (!report.failed || lexicographically_less(x, report.failed_position))
           {
             report.failed          = true;
             report.failed_position = x;
@@ -254,10 +257,16 @@ namespace mpm
           }
         return;
       }
-    if (fraction > report.max_cell_fraction)
+    // Among points that move alike, report the lexicographically first, so
+    // the message does not depend on the number of ranks.
+    const double tie = 1e-12 * report.max_cell_fraction;
+    if (fraction > report.max_cell_fraction + tie ||
+        (fraction > report.max_cell_fraction - tie &&
+         lexicographically_less(x, report.fastest_position)))
       {
-        report.max_cell_fraction = fraction;
-        report.fastest_position  = x;
+        report.max_cell_fraction =
+          std::max(fraction, report.max_cell_fraction);
+        report.fastest_position = x;
       }
     report.max_speed = std::max(report.max_speed, std::sqrt(speed_square));
     particle->set_location(x + dt * v);

@@ -1,10 +1,11 @@
 #ifndef mpm_core_shared_position_h
 #define mpm_core_shared_position_h
 
-#include <deal.II/base/array_view.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/point.h>
 
+#include <algorithm>
+#include <array>
 #include <sstream>
 #include <string>
 
@@ -12,9 +13,21 @@ namespace mpm
 {
   using namespace dealii;
 
+  /** Lexicographic order of points, to pick one of several alike. */
+  template <int dim>
+  bool
+  lexicographically_less(const Point<dim> &a, const Point<dim> &b)
+  {
+    for (unsigned int d = 0; d < dim; ++d)
+      if (a[d] != b[d])
+        return a[d] < b[d];
+    return false;
+  }
+
   /**
-   * For error messages that every rank throws alike: the position held by
-   * the lowest rank with `has_position`, formatted as "(x, y)". Collective.
+   * For error messages that every rank throws alike, whatever the number of
+   * ranks: the lexicographically smallest of the positions held by the
+   * ranks with `has_position`, formatted as "(x, y)". Collective.
    */
   template <int dim>
   std::string
@@ -22,19 +35,26 @@ namespace mpm
                   const Point<dim> &position,
                   const MPI_Comm    comm)
   {
-    const unsigned int rank    = Utilities::MPI::this_mpi_process(comm);
-    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
-    const unsigned int reporter =
-      Utilities::MPI::min(has_position ? rank : n_ranks, comm);
-    double where[dim] = {};
-    if (rank == reporter)
-      for (unsigned int d = 0; d < dim; ++d)
-        where[d] = position[d];
-    MPI_Allreduce(MPI_IN_PLACE, where, dim, MPI_DOUBLE, MPI_SUM, comm);
+    std::array<double, dim + 1> mine;
+    mine[0] = has_position ? 1. : 0.;
+    for (unsigned int d = 0; d < dim; ++d)
+      mine[d + 1] = position[d];
+    bool       found = false;
+    Point<dim> best;
+    for (const auto &other : Utilities::MPI::all_gather(comm, mine))
+      if (other[0] == 1.)
+        {
+          Point<dim> p;
+          for (unsigned int d = 0; d < dim; ++d)
+            p[d] = other[d + 1];
+          if (!found || lexicographically_less(p, best))
+            best = p;
+          found = true;
+        }
     std::ostringstream s;
     s << "(";
     for (unsigned int d = 0; d < dim; ++d)
-      s << (d ? ", " : "") << where[d];
+      s << (d ? ", " : "") << best[d];
     s << ")";
     return s.str();
   }

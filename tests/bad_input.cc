@@ -1,0 +1,110 @@
+// Bad input of every kind stops with one clear message and a non-zero exit:
+// exit code 2 for input errors (before the run starts), 3 for runs that
+// cannot go on. Each case prints its exit code and message; the expected
+// messages name the entry (Section/entry) and the allowed values.
+
+#include <deal.II/base/mpi.h>
+
+#include <mpm/core/application.h>
+
+#include <iostream>
+#include <sstream>
+
+#include "tests.h"
+
+using namespace dealii;
+
+void
+run_case(const std::string &title, std::vector<std::string> arguments)
+{
+  // Error messages go to std::cerr on rank 0; capture them.
+  std::ostringstream captured;
+  std::streambuf *   old = std::cerr.rdbuf(captured.rdbuf());
+  const int          code = mpm::run_command_line(arguments);
+  std::cerr.rdbuf(old);
+
+  // Paths differ between machines: show them relative to tests/.
+  std::string message = captured.str();
+  const std::string source = SOURCE_DIR;
+  for (auto pos = message.find(source); pos != std::string::npos;
+       pos = message.find(source))
+    message.replace(pos, source.size(), "<tests>");
+  deallog << "--- " << title << std::endl
+          << "exit code " << code << std::endl;
+  std::istringstream lines(message);
+  for (std::string line; std::getline(lines, line);)
+    if (!line.empty())
+      deallog << line << std::endl;
+  mpm_tests::check(title + ": non-zero exit", code != 0);
+}
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  mpm_tests::initlog();
+  const std::string base = mpm_tests::source_file("bad_input/base.prm");
+  auto with = [&](const std::vector<std::string> &settings) {
+    std::vector<std::string> arguments;
+    for (const auto &s : settings)
+      {
+        arguments.push_back("--set");
+        arguments.push_back(s);
+      }
+    arguments.push_back(base);
+    return arguments;
+  };
+
+  // The base scene runs.
+  {
+    const int code = mpm::run_command_line(with({}));
+    deallog << "base scene: exit code " << code << std::endl;
+  }
+
+  run_case("missing file", {"no_such_scene.prm"});
+  run_case("no file given", {});
+  run_case("unknown option", {"--frobnicate", base});
+  run_case("not a parameter file",
+           {mpm_tests::source_file("bad_input/not_a_prm_file.prm")});
+  run_case("misspelt entry",
+           {mpm_tests::source_file("bad_input/unknown_entry.prm")});
+  run_case("no bodies", {mpm_tests::source_file("bad_input/no_bodies.prm")});
+  run_case("--set of an unknown entry", with({"Output/Colour=blue"}));
+  run_case("--set without '='", with({"Output/Directory"}));
+  run_case("value outside the pattern",
+           with({"Time stepping/Update scheme=RK4"}));
+  run_case("Poisson's ratio 0.5", with({"Materials/rubber/Poisson's ratio=0.5"}));
+  run_case("zero Young's modulus", with({"Materials/rubber/Young's modulus=0"}));
+  run_case("unknown material", with({"Bodies/block/Material=steel"}));
+  run_case("unknown boundary name",
+           with({"Boundary conditions/Fixed boundaries=floor"}));
+  run_case("boundary id not in the grid",
+           with({"Grid/Arguments=4, 4 : 0, 0 : 1, 1 : false"}));
+  run_case("unknown grid generator", with({"Grid/Generator=hyper_banana"}));
+  run_case("missing mesh file", with({"Grid/Mesh file=no_such_mesh.msh"}));
+  run_case("disk in 3D", with({"Dimension=3", "Bodies/block/Shape=disk",
+                               "Grid/Arguments=2 : 0 : 1 : true",
+                               "Grid/Generator=subdivided_hyper_cube",
+                               "Bodies/block/Center=0.5, 0.5, 0.5",
+                               "Bodies/block/Radius=0.2",
+                               "Gravity=0, 0, 0"}));
+  run_case("box corners with the wrong dimension",
+           with({"Bodies/block/Lower corner=0.25, 0, 0"}));
+  run_case("bad velocity expression",
+           with({"Bodies/block/Initial velocity=sin(; 0"}));
+  run_case("body outside the grid",
+           with({"Bodies/block/Lower corner=2, 2",
+                 "Bodies/block/Upper corner=3, 3"}));
+  run_case("time step above the stability limit",
+           with({"Time stepping/Time step=0.1"}));
+  run_case("points leave the grid",
+           with({"Boundary conditions/Fixed boundaries=",
+                 "Bodies/block/Initial velocity=0; -2",
+                 "Time stepping/End time=1"}));
+  run_case("points would skip cells",
+           with({"Gravity=0, -1e5", "Boundary conditions/Fixed boundaries=",
+                 "Bodies/block/Lower corner=0.25, 0.5",
+                 "Bodies/block/Upper corner=0.75, 1",
+                 "Time stepping/Time step=0.0015",
+                 "Time stepping/End time=1"}));
+}

@@ -1,0 +1,131 @@
+// Explicit MPM scenes through the mpm command line, checked against
+// solutions from outside the code:
+// - free fall of one point: MUSL integrates a constant acceleration as
+//   v_n = g t_n and y_n = y_0 + g dt^2 n (n + 1) / 2 (semi-implicit Euler),
+//   which converges to g t^2 / 2 with an error g t dt / 2; both are checked
+//   to round-off;
+// - axial vibration of a bar (benchmarks.md section 7): centre-of-mass
+//   velocity v0 cos(omega_1 t) / (beta_1 L) within 3 % of its amplitude
+//   over 40 s, with each update scheme, on 32 cells;
+// - two elastic disks colliding: momentum stays zero to round-off, mass is
+//   constant, and kinetic plus strain energy drifts by less than 3 %.
+
+#include <deal.II/base/mpi.h>
+
+#include <mpm/core/application.h>
+
+#include <cmath>
+
+#include "tests.h"
+
+using namespace dealii;
+
+std::map<std::string, std::vector<double>>
+run_scene(const std::string &scene, const std::vector<std::string> &settings)
+{
+  std::vector<std::string> arguments = {"--set", "Output/Directory=" + scene};
+  for (const auto &s : settings)
+    {
+      arguments.push_back("--set");
+      arguments.push_back(s);
+    }
+  arguments.push_back(mpm_tests::source_file(scene));
+  const int code = mpm::run_command_line(arguments);
+  deallog << scene << ": exit code " << code << std::endl;
+  MPI_Barrier(MPI_COMM_WORLD);
+  return mpm_tests::read_csv(scene + "/time_series.csv");
+}
+
+void
+free_fall()
+{
+  auto         csv = run_scene("scenes/free_fall.prm", {});
+  const double g = 9.81, dt = 0.005, y0 = 0.875;
+  double       discrete_error = 0., velocity_error = 0., convergence_gap = 0.;
+  for (unsigned int n = 0; n < csv["time"].size(); ++n)
+    {
+      const double t = csv["time"][n];
+      discrete_error =
+        std::max(discrete_error,
+                 std::abs(csv["point0_y"][n] - (y0 - 0.5 * g * t * (t + dt))));
+      velocity_error =
+        std::max(velocity_error, std::abs(csv["point0_vy"][n] + g * t));
+      convergence_gap =
+        std::max(convergence_gap,
+                 std::abs((y0 - 0.5 * g * t * t - csv["point0_y"][n]) -
+                          0.5 * g * t * dt));
+    }
+  deallog << "free fall: steps " << csv["time"].size() - 1 << std::endl;
+  mpm_tests::check("free fall: v = -g t to 1e-12", velocity_error < 1e-12);
+  mpm_tests::check("free fall: y = y0 - g t (t + dt) / 2 to 1e-12",
+                   discrete_error < 1e-12);
+  mpm_tests::check("free fall: y0 - g t^2 / 2 - y = g t dt / 2 to 1e-12",
+                   convergence_gap < 1e-12);
+}
+
+void
+vibrating_bar(const std::string &scheme)
+{
+  auto csv = run_scene("scenes/vibrating_bar.prm",
+                       {"Time stepping/Update scheme=" + scheme});
+  const double L = 25., v0 = 0.1, beta = numbers::PI / (2. * L),
+               omega = beta * std::sqrt(100. / 1.);
+  const double amplitude = v0 / (beta * L);
+  double       error     = 0.;
+  for (unsigned int n = 0; n < csv["time"].size(); ++n)
+    {
+      const double v_cm = csv["momentum_x"][n] / csv["mass"][n];
+      error             = std::max(error,
+                       std::abs(v_cm - amplitude * std::cos(omega * csv["time"][n])));
+    }
+  deallog << "vibrating bar " << scheme << ": end time " << csv["time"].back()
+          << ", error / amplitude " << std::setprecision(2) << error / amplitude
+          << std::setprecision(6) << std::endl;
+  mpm_tests::check("vibrating bar " + scheme +
+                     ": centre-of-mass velocity within 3% over 40 s",
+                   error < 0.03 * amplitude);
+}
+
+void
+two_disks()
+{
+  auto csv = run_scene("../prm/two_disks.prm",
+                       {"Output/Interval=0", "Output/Write grid=false"});
+  const double e0 = csv["total_energy"][0];
+  const double m0 = csv["mass"][0];
+  const double p_scale = m0 * 0.1; // mass times initial speed per axis
+  double       drift = 0., momentum = 0., mass_change = 0., min_kinetic = e0;
+  for (unsigned int n = 0; n < csv["time"].size(); ++n)
+    {
+      drift    = std::max(drift, std::abs(csv["total_energy"][n] - e0) / e0);
+      momentum = std::max({momentum,
+                           std::abs(csv["momentum_x"][n]),
+                           std::abs(csv["momentum_y"][n])});
+      mass_change = std::max(mass_change, std::abs(csv["mass"][n] - m0));
+      min_kinetic = std::min(min_kinetic, csv["kinetic_energy"][n]);
+    }
+  mpm_tests::check("two disks: momentum zero to 1e-12 of m v0",
+                   momentum < 1e-12 * p_scale);
+  mpm_tests::check("two disks: mass constant to 1e-12",
+                   mass_change < 1e-12 * m0);
+  mpm_tests::check("two disks: they collide (kinetic energy falls below "
+                   "half)",
+                   min_kinetic < 0.5 * e0);
+  mpm_tests::check("two disks: they bounce apart (kinetic energy back "
+                   "above 80%)",
+                   csv["kinetic_energy"].back() > 0.8 * e0);
+  deallog << "two disks: energy drift " << std::setprecision(2) << drift
+          << std::setprecision(6) << std::endl;
+  mpm_tests::check("two disks: energy drift below 3%", drift < 0.03);
+}
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  mpm_tests::initlog();
+  free_fall();
+  for (const std::string scheme : {"USF", "USL", "MUSL"})
+    vibrating_bar(scheme);
+  two_disks();
+}

@@ -1,0 +1,229 @@
+// The Q1 grid basis and the point-grid transfer on distorted 2D and 3D
+// grids, on one or two ranks:
+// - at random points of every cell, shape functions sum to 1, gradients to
+//   0, and linear fields are reproduced (sum N x_v = x, sum x_v (x) grad N =
+//   I); gradients match finite differences of N;
+// - one projection of random point masses and momenta to the grid conserves
+//   mass and momentum, and so does interpolating the nodal velocities back.
+// All checks are against exact identities, so the tolerances are round-off.
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/fe/mapping_q.h>
+#include <deal.II/grid/grid_tools.h>
+
+#include <mpm/assembly/grid_transfer.h>
+#include <mpm/bodies/body.h>
+#include <mpm/boundary/dirichlet_conditions.h>
+#include <mpm/grid/background_grid.h>
+
+#include <cmath>
+#include <random>
+
+#include "tests.h"
+
+using namespace dealii;
+using namespace mpm;
+
+template <int dim>
+Point<dim>
+distort(const Point<dim> &p)
+{
+  // Smooth and one-to-one on [0,1]^dim, so cells become general
+  // quadrilaterals (hexahedra) and the boundary stays put.
+  Point<dim> q = p;
+  for (unsigned int d = 0; d < dim; ++d)
+    q[d] += 0.06 * std::sin(numbers::PI * p[(d + 1) % dim]) *
+            std::sin(2 * numbers::PI * p[d]);
+  return q;
+}
+
+template <int dim>
+void
+test()
+{
+  deallog << "dim = " << dim << std::endl;
+  const MPI_Comm comm = MPI_COMM_WORLD;
+
+  ParameterHandler prm;
+  BackgroundGrid<dim>::declare_parameters(prm);
+  DirichletConditions<dim>::declare_parameters(prm);
+  prm.enter_subsection("body");
+  Body<dim>::declare_parameters(prm);
+  prm.leave_subsection();
+  prm.enter_subsection("material");
+  Material::declare_parameters(prm);
+  prm.leave_subsection();
+  prm.parse_input_from_string(
+    std::string("subsection Grid\n set Generator = subdivided_hyper_cube\n"
+                " set Arguments = 4 : 0 : 1 : false\nend\n"
+                "subsection body\n set Shape = box\n") +
+    (dim == 2 ? " set Lower corner = 0,0\n set Upper corner = 1,1\n" :
+                " set Lower corner = 0,0,0\n set Upper corner = 1,1,1\n") +
+    " set Material = steel\n set Points per cell direction = 3\nend\n");
+
+  parallel::distributed::Triangulation<dim> tria(comm);
+  BackgroundGrid<dim>                       grid(prm);
+  grid.create(tria);
+  GridTools::transform(&distort<dim>, tria);
+
+  GridNodes<dim> nodes(tria);
+  nodes.setup();
+  GridBasis<dim> basis;
+  basis.reinit(nodes);
+  DirichletConditions<dim> dirichlet(prm, grid);
+  dirichlet.setup(nodes);
+  MappingQ<dim> mapping(1);
+  deallog << "grid is cartesian: " << basis.grid_is_cartesian() << std::endl;
+
+  // Basis identities at random points of every locally owned cell.
+  {
+    std::mt19937                           rng(42);
+    std::uniform_real_distribution<double> unit(0., 1.);
+    double       partition_error = 0., gradient_sum_error = 0.;
+    double       position_error = 0., linear_gradient_error = 0.;
+    double       fd_error = 0.;
+    Support<dim> s, s_plus, s_minus;
+    for (const auto &cell : tria.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (unsigned int k = 0; k < 5; ++k)
+          {
+            Point<dim> xi;
+            for (unsigned int d = 0; d < dim; ++d)
+              xi[d] = unit(rng);
+            basis.evaluate(cell->active_cell_index(), xi, s);
+            const Point<dim> x =
+              mapping.transform_unit_to_real_cell(cell, xi);
+            double         sum_N = 0.;
+            Tensor<1, dim> sum_grad;
+            Point<dim>     x_from_N;
+            Tensor<2, dim> identity_from_grad;
+            for (unsigned int i = 0; i < s.n_nodes; ++i)
+              {
+                sum_N += s.N[i];
+                sum_grad += s.grad_N[i];
+                x_from_N += s.N[i] * cell->vertex(i);
+                identity_from_grad +=
+                  outer_product(Tensor<1, dim>(cell->vertex(i)), s.grad_N[i]);
+              }
+            partition_error    = std::max(partition_error, std::abs(sum_N - 1.));
+            gradient_sum_error = std::max(gradient_sum_error, sum_grad.norm());
+            position_error = std::max(position_error, (x_from_N - x).norm());
+            linear_gradient_error =
+              std::max(linear_gradient_error,
+                       (identity_from_grad -
+                        Tensor<2, dim>(unit_symmetric_tensor<dim>()))
+                         .norm());
+
+            // Central differences of N along each reference direction.
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                const double eps     = 1e-6;
+                Point<dim>   xi_plus = xi, xi_minus = xi;
+                xi_plus[d] += eps;
+                xi_minus[d] -= eps;
+                basis.evaluate(cell->active_cell_index(), xi_plus, s_plus);
+                basis.evaluate(cell->active_cell_index(), xi_minus, s_minus);
+                const Tensor<1, dim> dx =
+                  mapping.transform_unit_to_real_cell(cell, xi_plus) -
+                  mapping.transform_unit_to_real_cell(cell, xi_minus);
+                for (unsigned int i = 0; i < s.n_nodes; ++i)
+                  fd_error = std::max(fd_error,
+                                      std::abs(s_plus.N[i] - s_minus.N[i] -
+                                               s.grad_N[i] * dx) /
+                                        dx.norm());
+              }
+          }
+    partition_error    = Utilities::MPI::max(partition_error, comm);
+    gradient_sum_error = Utilities::MPI::max(gradient_sum_error, comm);
+    position_error     = Utilities::MPI::max(position_error, comm);
+    linear_gradient_error = Utilities::MPI::max(linear_gradient_error, comm);
+    fd_error              = Utilities::MPI::max(fd_error, comm);
+    mpm_tests::check("sum N = 1 to 1e-13", partition_error < 1e-13);
+    mpm_tests::check("sum grad N = 0 to 1e-11", gradient_sum_error < 1e-11);
+    mpm_tests::check("sum N x_v = x to 1e-13", position_error < 1e-13);
+    mpm_tests::check("sum x_v (x) grad N = I to 1e-12",
+                     linear_gradient_error < 1e-12);
+    mpm_tests::check("grad N matches finite differences to 1e-6",
+                     fd_error < 1e-6);
+  }
+
+  // Projection of random masses and momenta, and back.
+  {
+    std::vector<std::unique_ptr<Material>> materials;
+    prm.enter_subsection("material");
+    materials.push_back(Material::create(prm, "steel", "material"));
+    prm.leave_subsection();
+    std::vector<Body<dim>> bodies;
+    prm.enter_subsection("body");
+    bodies.emplace_back(prm, "body", "body", std::vector<std::string>{"steel"});
+    prm.leave_subsection();
+
+    MaterialPoints<dim> points(tria, mapping, 0);
+    points.seed(bodies, materials);
+    using Layout = PointLayout<dim>;
+    // Masses and velocities from the point id, the same on any number of
+    // ranks.
+    double         point_mass = 0.;
+    Tensor<1, dim> point_momentum;
+    for (auto &particle : points.handler())
+      {
+        std::mt19937                           rng(particle.get_id());
+        std::uniform_real_distribution<double> value(0.5, 1.5);
+        const ArrayView<double>                p = particle.get_properties();
+        p[Layout::mass]                          = value(rng);
+        for (unsigned int d = 0; d < dim; ++d)
+          p[Layout::velocity + d] = value(rng) - 1.;
+        point_mass += p[Layout::mass];
+        point_momentum += p[Layout::mass] * Layout::get_velocity(p);
+      }
+    point_mass = Utilities::MPI::sum(point_mass, comm);
+    point_momentum = Utilities::MPI::sum(point_momentum, comm);
+
+    GridTransfer<dim> transfer(points, basis, nodes, dirichlet, Tensor<1, dim>());
+    transfer.project_mass_momentum(false);
+
+    // Sum over owned nodes only, so that shared nodes count once.
+    using NodalLayout = typename GridNodes<dim>::NodalLayout;
+    const double * v       = nodes.data();
+    const unsigned n_owned = nodes.vector().locally_owned_size();
+    double         grid_mass = 0.;
+    Tensor<1, dim> grid_momentum;
+    for (unsigned int node = 0; node < n_owned;
+         node += NodalLayout::n_components)
+      {
+        grid_mass += v[node + NodalLayout::mass];
+        for (unsigned int d = 0; d < dim; ++d)
+          grid_momentum[d] += v[node + NodalLayout::velocity + d];
+      }
+    grid_mass     = Utilities::MPI::sum(grid_mass, comm);
+    grid_momentum = Utilities::MPI::sum(grid_momentum, comm);
+    mpm_tests::check("P2G conserves mass to 1e-13 (relative)",
+                     std::abs(grid_mass - point_mass) < 1e-13 * point_mass);
+    mpm_tests::check("P2G conserves momentum to 1e-13 (relative)",
+                     (grid_momentum - point_momentum).norm() <
+                       1e-13 * point_mass);
+
+    // Back to the points: V_p = sum N v_i conserves momentum.
+    transfer.compute_nodal_velocity();
+    Tensor<1, dim> returned_momentum;
+    transfer.for_each_point([&](auto &particle, const Support<dim> &support) {
+      returned_momentum +=
+        particle->get_properties()[Layout::mass] *
+        transfer.interpolate(support, NodalLayout::velocity);
+    });
+    returned_momentum = Utilities::MPI::sum(returned_momentum, comm);
+    mpm_tests::check("G2P of nodal velocities conserves momentum to 1e-13",
+                     (returned_momentum - point_momentum).norm() <
+                       1e-13 * point_mass);
+    deallog << "points: " << points.n_global_points() << std::endl;
+  }
+}
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  mpm_tests::initlog();
+  test<2>();
+  test<3>();
+}

@@ -1,0 +1,71 @@
+// Shared helpers for the .cc tests: deallog goes to the file `output`
+// (rank 0 only), which numdiff compares with the test's .output file.
+#ifndef mpm_tests_h
+#define mpm_tests_h
+
+#include <deal.II/base/logstream.h>
+#include <deal.II/base/mpi.h>
+
+#include <fstream>
+#include <iomanip>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace mpm_tests
+{
+  inline std::ofstream logfile;
+
+  inline void
+  initlog()
+  {
+    if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+      {
+        logfile.open("output");
+        dealii::deallog.attach(logfile, false);
+      }
+    dealii::deallog.depth_console(0);
+    dealii::deallog << std::setprecision(6);
+  }
+
+  /** Print a check in a form whose text does not depend on round-off. */
+  inline void
+  check(const std::string &what, const bool passed)
+  {
+    dealii::deallog << (passed ? "PASS " : "FAIL ") << what << std::endl;
+  }
+
+  /** Path of a file next to the tests' sources. */
+  inline std::string
+  source_file(const std::string &name)
+  {
+    return std::string(SOURCE_DIR) + "/" + name;
+  }
+  /** The columns of a CSV file with a header line, by name. */
+  inline std::map<std::string, std::vector<double>>
+  read_csv(const std::string &filename)
+  {
+    std::ifstream                              in(filename);
+    std::string                                line;
+    std::vector<std::string>                   names;
+    std::map<std::string, std::vector<double>> columns;
+    std::getline(in, line);
+    {
+      std::istringstream header(line);
+      std::string        name;
+      while (std::getline(header, name, ','))
+        names.push_back(name);
+    }
+    while (std::getline(in, line))
+      {
+        std::istringstream row(line);
+        std::string        value;
+        for (unsigned int i = 0; std::getline(row, value, ','); ++i)
+          columns[names[i]].push_back(std::stod(value));
+      }
+    return columns;
+  }
+} // namespace mpm_tests
+
+#endif
