@@ -7,6 +7,7 @@
 #include <mpm/core/shared_position.h>
 #include <mpm/core/simulator.h>
 
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -54,6 +55,9 @@ namespace mpm
     prm.enter_subsection("Output");
     prm.declare_entry("Directory", "output", Patterns::Anything(),
                       "Directory for all output; created if missing.");
+    prm.declare_entry("Write ParaView output", "true", Patterns::Bool(),
+                      "Write snapshots of points (and grid) for ParaView. "
+                      "Off for throughput measurements.");
     prm.declare_entry("Interval", "0", Patterns::Double(0.),
                       "Simulated time between ParaView snapshots. 0 writes "
                       "the first and the last state only.");
@@ -125,6 +129,7 @@ namespace mpm
 
     prm.enter_subsection("Output");
     output_directory     = prm.get("Directory");
+    write_paraview       = prm.get_bool("Write ParaView output");
     output_interval      = prm.get_double("Interval");
     write_grid           = prm.get_bool("Write grid");
     time_series_file     = prm.get("Time series file");
@@ -338,7 +343,8 @@ namespace mpm
       transfer->project_mass_momentum(false);
       transfer->compute_nodal_velocity();
       diagnostics = time_series->write_row(time, step, 0., *points);
-      vtu_output->write(time, *points, nodes, *mapping);
+      if (write_paraview)
+        vtu_output->write(time, *points, nodes, *mapping);
     }
     double next_output      = output_interval;
     double next_time_series = time_series_interval;
@@ -371,8 +377,9 @@ namespace mpm
                    next_time_series <= time + time_tolerance)
               next_time_series += time_series_interval;
           }
-        if ((output_interval > 0. && time >= next_output - time_tolerance) ||
-            at_end)
+        if (write_paraview &&
+            ((output_interval > 0. && time >= next_output - time_tolerance) ||
+             at_end))
           {
             TimerOutput::Scope t(timer, "output");
             vtu_output->write(time, *points, nodes, *mapping);
@@ -384,11 +391,16 @@ namespace mpm
       }
 
     const double wall = wall_clock.wall_time();
+    rusage       usage;
+    getrusage(RUSAGE_SELF, &usage);
+    const double peak_memory_mb =
+      Utilities::MPI::sum(usage.ru_maxrss / 1024., communicator);
     pcout << "mpm: " << step << " steps, "
           << static_cast<double>(points->n_global_points()) * step / wall /
                Utilities::MPI::n_mpi_processes(communicator)
           << " particle-steps per second per rank, " << wall
-          << " s wall time" << std::endl;
+          << " s wall time, peak memory " << peak_memory_mb
+          << " MB (all ranks)" << std::endl;
     timer.print_wall_time_statistics(communicator);
   }
 

@@ -102,6 +102,7 @@ namespace mpm
     double         fixed_time_step;
     double         cfl_number;
     std::string    output_directory;
+    bool           write_paraview;
     double         output_interval;
     bool           write_grid;
     double         time_series_interval;
