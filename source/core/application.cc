@@ -218,6 +218,15 @@ namespace mpm
       for (const auto &o : overrides)
         apply_override(prm, o, true);
 
+      // A relative mesh file is relative to the parameter file.
+      prm.enter_subsection("Grid");
+      const std::filesystem::path mesh = prm.get("Mesh file");
+      if (!mesh.empty() && mesh.is_relative())
+        prm.set("Mesh file",
+                (std::filesystem::path(filename).parent_path() / mesh)
+                  .string());
+      prm.leave_subsection();
+
       if (dim == 2)
         run_scene<2>(prm, material_names, body_names);
       else

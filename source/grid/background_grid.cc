@@ -36,8 +36,9 @@ namespace mpm
     prm.declare_entry("Mesh file",
                       "",
                       Patterns::Anything(),
-                      "A gmsh .msh file with the coarse grid. Physical tags "
-                      "on its boundary become boundary ids.");
+                      "A gmsh .msh file with the coarse grid, relative to the "
+                      "parameter file. Physical tags on its boundary become "
+                      "boundary ids.");
     prm.declare_entry("Global refinements",
                       "0",
                       Patterns::Integer(0, 20),
