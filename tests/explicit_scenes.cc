@@ -1,9 +1,10 @@
 // Explicit MPM scenes through the mpm command line, checked against
 // solutions from outside the code:
-// - free fall of one point: MUSL integrates a constant acceleration as
-//   v_n = g t_n and y_n = y_0 + g dt^2 n (n + 1) / 2 (semi-implicit Euler),
-//   which converges to g t^2 / 2 with an error g t dt / 2; both are checked
-//   to round-off;
+// - free fall of one point (2D) and of a sphere of points (3D): MUSL
+//   integrates a constant acceleration as v_n = -g t_n and
+//   y_n = y_0 - g t_n (t_n + dt) / 2 (semi-implicit Euler), which converges
+//   to g t^2 / 2 with an error g t dt / 2; all checked to round-off, and
+//   the total momentum is -M g t;
 // - axial vibration of a bar (benchmarks.md section 7): centre-of-mass
 //   velocity v0 cos(omega_1 t) / (beta_1 L) within 3 % of its amplitude
 //   over 40 s, with each update scheme, on 32 cells;
@@ -43,30 +44,37 @@ run_scene(const std::string &scene, const std::vector<std::string> &settings)
 }
 
 void
-free_fall()
+free_fall(const std::string &scene, const std::string &vertical)
 {
-  auto         csv = run_scene("scenes/free_fall.prm", {});
-  const double g = 9.81, dt = 0.005, y0 = 0.875;
-  double       discrete_error = 0., velocity_error = 0., convergence_gap = 0.;
+  auto         csv = run_scene(scene, {});
+  const double y0  = csv["point0_" + vertical][0];
+  const double g   = 9.81;
+  const double dt  = csv["time"][1] - csv["time"][0];
+  double discrete_error = 0., velocity_error = 0., convergence_gap = 0.;
+  double momentum_error = 0.;
+  const double mass = csv["mass"][0];
   for (unsigned int n = 0; n < csv["time"].size(); ++n)
     {
       const double t = csv["time"][n];
+      const double y = csv["point0_" + vertical][n];
       discrete_error =
-        std::max(discrete_error,
-                 std::abs(csv["point0_y"][n] - (y0 - 0.5 * g * t * (t + dt))));
-      velocity_error =
-        std::max(velocity_error, std::abs(csv["point0_vy"][n] + g * t));
-      convergence_gap =
-        std::max(convergence_gap,
-                 std::abs((y0 - 0.5 * g * t * t - csv["point0_y"][n]) -
-                          0.5 * g * t * dt));
+        std::max(discrete_error, std::abs(y - (y0 - 0.5 * g * t * (t + dt))));
+      velocity_error = std::max(
+        velocity_error, std::abs(csv["point0_v" + vertical][n] + g * t));
+      convergence_gap = std::max(
+        convergence_gap, std::abs((y0 - 0.5 * g * t * t - y) - 0.5 * g * t * dt));
+      momentum_error =
+        std::max(momentum_error,
+                 std::abs(csv["momentum_" + vertical][n] + mass * g * t));
     }
-  deallog << "free fall: steps " << csv["time"].size() - 1 << std::endl;
+  deallog << scene << ": steps " << csv["time"].size() - 1 << std::endl;
   mpm_tests::check("free fall: v = -g t to 1e-12", velocity_error < 1e-12);
   mpm_tests::check("free fall: y = y0 - g t (t + dt) / 2 to 1e-12",
                    discrete_error < 1e-12);
   mpm_tests::check("free fall: y0 - g t^2 / 2 - y = g t dt / 2 to 1e-12",
                    convergence_gap < 1e-12);
+  mpm_tests::check("free fall: momentum = -M g t to 1e-12 M g",
+                   momentum_error < 1e-12 * mass * g);
 }
 
 void
@@ -129,7 +137,8 @@ main(int argc, char **argv)
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   mpm_tests::initlog();
-  free_fall();
+  free_fall("scenes/free_fall.prm", "y");
+  free_fall("scenes/free_fall_3d.prm", "z");
   for (const std::string scheme : {"USF", "USL", "MUSL"})
     vibrating_bar(scheme);
   two_disks();
