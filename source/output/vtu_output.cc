@@ -23,6 +23,27 @@ namespace mpm
 
 
   template <int dim>
+  template <int patch_dim>
+  void
+  VtuOutput<dim>::write_snapshot(
+    const DataOutInterface<patch_dim, dim> &      data_out,
+    const std::string &                           name,
+    const double                                  time,
+    std::vector<std::pair<double, std::string>> &records) const
+  {
+    records.emplace_back(time,
+                         data_out.write_vtu_with_pvtu_record(
+                           directory, name, counter, communicator, 5));
+    if (Utilities::MPI::this_mpi_process(communicator) == 0)
+      {
+        std::ofstream pvd(directory + name + ".pvd");
+        DataOutBase::write_pvd_record(pvd, records);
+      }
+  }
+
+
+
+  template <int dim>
   void
   VtuOutput<dim>::write(const double               time,
                         const MaterialPoints<dim> &points,
@@ -30,7 +51,6 @@ namespace mpm
                         const Mapping<dim> &       mapping)
   {
     using Layout = PointLayout<dim>;
-    const bool is_root = Utilities::MPI::this_mpi_process(communicator) == 0;
 
     {
       std::vector<DataComponentInterpretation::DataComponentInterpretation>
@@ -45,14 +65,7 @@ namespace mpm
       data_out.build_patches(points.handler(),
                              Layout::names(points.n_internal_variables()),
                              interpretation);
-      const std::string name = data_out.write_vtu_with_pvtu_record(
-        directory, "points", counter, communicator, 5);
-      point_records.emplace_back(time, name);
-      if (is_root)
-        {
-          std::ofstream pvd(directory + "points.pvd");
-          DataOutBase::write_pvd_record(pvd, point_records);
-        }
+      write_snapshot(data_out, "points", time, point_records);
     }
 
     if (write_grid)
@@ -83,14 +96,7 @@ namespace mpm
         subdomain = Utilities::MPI::this_mpi_process(communicator);
         data_out.add_data_vector(subdomain, "subdomain");
         data_out.build_patches(mapping);
-        const std::string name = data_out.write_vtu_with_pvtu_record(
-          directory, "grid", counter, communicator, 5);
-        grid_records.emplace_back(time, name);
-        if (is_root)
-          {
-            std::ofstream pvd(directory + "grid.pvd");
-            DataOutBase::write_pvd_record(pvd, grid_records);
-          }
+        write_snapshot(data_out, "grid", time, grid_records);
       }
     ++counter;
   }

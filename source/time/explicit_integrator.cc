@@ -41,86 +41,45 @@ namespace mpm
   ExplicitIntegrator<dim>::step(const double dt)
   {
     StepReport report;
+    auto       timed = [this](const char *section, const auto &work) {
+      TimerOutput::Scope scope(timer, section);
+      work();
+    };
     switch (scheme)
       {
         case Scheme::MUSL:
-          {
-            // [W] 3.5, points 2-5: nodal v^t, forces, accelerations.
-            {
-              TimerOutput::Scope t(timer, "P2G");
-              transfer.project_mass_momentum(true);
-            }
-            {
-              TimerOutput::Scope t(timer, "nodal solve");
-              transfer.compute_nodal_acceleration(dt, false);
-            }
-            // Point 6: V_p += dt N a.
-            {
-              TimerOutput::Scope t(timer, "G2P");
-              advance_point_velocities(dt);
-            }
-            // Point 7: v^L from the new point velocities.
-            {
-              TimerOutput::Scope t(timer, "P2G");
-              transfer.project_momentum();
-            }
-            {
-              TimerOutput::Scope t(timer, "nodal solve");
-              transfer.compute_nodal_velocity();
-            }
-            // Points 8-9: stress and positions from v^L.
-            {
-              TimerOutput::Scope t(timer, "G2P");
-              update_points(dt, true, report);
-            }
-            break;
-          }
+          // [W] 3.5, points 2-5: nodal v^t, forces, accelerations.
+          timed("P2G", [&] { transfer.project_mass_momentum(true); });
+          timed("nodal solve",
+                [&] { transfer.compute_nodal_acceleration(dt, false); });
+          // Point 6: V_p += dt N a.
+          timed("G2P", [&] { advance_point_velocities(dt); });
+          // Point 7: v^L from the new point velocities.
+          timed("P2G", [&] { transfer.project_momentum(); });
+          timed("nodal solve", [&] { transfer.compute_nodal_velocity(); });
+          // Points 8-9: stress and positions from v^L.
+          timed("G2P", [&] { update_points(dt, true, report); });
+          break;
         case Scheme::USL:
-          {
-            {
-              TimerOutput::Scope t(timer, "P2G");
-              transfer.project_mass_momentum(true);
-            }
-            {
-              TimerOutput::Scope t(timer, "nodal solve");
-              transfer.compute_nodal_velocity();
-              transfer.compute_nodal_acceleration(dt, true);
-            }
-            {
-              TimerOutput::Scope t(timer, "G2P");
-              advance_and_move(dt, report);
-              update_points(dt, false, report);
-            }
-            break;
-          }
+          timed("P2G", [&] { transfer.project_mass_momentum(true); });
+          timed("nodal solve", [&] {
+            transfer.compute_nodal_velocity();
+            transfer.compute_nodal_acceleration(dt, true);
+          });
+          timed("G2P", [&] {
+            advance_and_move(dt, report);
+            update_points(dt, false, report);
+          });
+          break;
         case Scheme::USF:
-          {
-            {
-              TimerOutput::Scope t(timer, "P2G");
-              transfer.project_mass_momentum(false);
-            }
-            {
-              TimerOutput::Scope t(timer, "nodal solve");
-              transfer.compute_nodal_velocity();
-            }
-            {
-              TimerOutput::Scope t(timer, "G2P");
-              update_points(dt, false, report);
-            }
-            {
-              TimerOutput::Scope t(timer, "P2G");
-              transfer.project_force();
-            }
-            {
-              TimerOutput::Scope t(timer, "nodal solve");
-              transfer.compute_nodal_acceleration(dt, true);
-            }
-            {
-              TimerOutput::Scope t(timer, "G2P");
-              advance_and_move(dt, report);
-            }
-            break;
-          }
+          timed("P2G", [&] { transfer.project_mass_momentum(false); });
+          timed("nodal solve", [&] { transfer.compute_nodal_velocity(); });
+          timed("G2P", [&] { update_points(dt, false, report); });
+          timed("P2G", [&] { transfer.project_force(); });
+          timed("nodal solve",
+                [&] { transfer.compute_nodal_acceleration(dt, true); });
+          timed("G2P", [&] { advance_and_move(dt, report); });
+          break;
       }
     return report;
   }

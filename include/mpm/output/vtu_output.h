@@ -1,7 +1,7 @@
 #ifndef mpm_output_vtu_output_h
 #define mpm_output_vtu_output_h
 
-#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/data_out_base.h>
 #include <deal.II/fe/mapping.h>
 
 #include <mpm/assembly/grid_nodes.h>
@@ -37,6 +37,17 @@ namespace mpm
           const Mapping<dim> &       mapping);
 
   private:
+    /**
+     * Write one snapshot (VTU per rank, PVTU) and rewrite its PVD series.
+     * Points are patches of dimension 0, grid cells of dimension dim.
+     */
+    template <int patch_dim>
+    void
+    write_snapshot(const DataOutInterface<patch_dim, dim> &      data_out,
+                   const std::string &                           name,
+                   const double                                  time,
+                   std::vector<std::pair<double, std::string>> &records) const;
+
     const std::string directory;
     const bool        write_grid;
     const MPI_Comm    communicator;
