@@ -3,6 +3,7 @@
 // - at random points of every cell, shape functions sum to 1, gradients to
 //   0, and linear fields are reproduced (sum N x_v = x, sum x_v (x) grad N =
 //   I); gradients match finite differences of N;
+// - seeded points fill the domain's volume;
 // - one projection of random point masses and momenta to the grid conserves
 //   mass and momentum, and so does interpolating the nodal velocities back.
 // All checks are against exact identities, so the tolerances are round-off.
@@ -159,7 +160,7 @@ test()
     prm.leave_subsection();
 
     MaterialPoints<dim> points(tria, mapping, 0);
-    points.seed(bodies, materials);
+    points.seed(bodies, materials, basis);
     using Layout = PointLayout<dim>;
     // Masses and velocities from the point id, the same on any number of
     // ranks.
@@ -177,6 +178,19 @@ test()
         point_momentum += p[Layout::mass] * Layout::get_velocity(p);
       }
     point_mass = Utilities::MPI::sum(point_mass, comm);
+
+    // Point volumes fill the domain: the midpoint rule of each sub-cell is
+    // exact for bilinear cells, and close for trilinear ones.
+    double volume = 0.;
+    for (const auto &particle : points.handler())
+      volume += particle.get_properties()[Layout::reference_volume];
+    volume = Utilities::MPI::sum(volume, comm);
+    if (dim == 2)
+      mpm_tests::check("seeded volume = domain volume to 1e-12",
+                       std::abs(volume - 1.) < 1e-12);
+    else
+      mpm_tests::check("seeded volume = domain volume to 1e-3",
+                       std::abs(volume - 1.) < 1e-3);
     point_momentum = Utilities::MPI::sum(point_momentum, comm);
 
     GridTransfer<dim> transfer(points, basis, nodes, dirichlet, Tensor<1, dim>());

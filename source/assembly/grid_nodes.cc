@@ -30,6 +30,18 @@ namespace mpm
 
     const unsigned int n_local = partitioner->locally_owned_size() +
                                  partitioner->n_ghost_indices();
+    // A node's values must be consecutive and start at a multiple of
+    // n_components in the local numbering (the active flags rely on it).
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (!cell->is_artificial())
+        for (const unsigned int v : cell->vertex_indices())
+          for (unsigned int c = 0; c < NodalLayout::n_components; ++c)
+            AssertThrow(local_index(cell->vertex_dof_index(v, c)) ==
+                          local_index(cell->vertex_dof_index(v, 0)) + c &&
+                        local_index(cell->vertex_dof_index(v, 0)) %
+                            NodalLayout::n_components ==
+                          0,
+                        ExcInternalError());
     active_flag.assign(n_local / NodalLayout::n_components, false);
     active_nodes.clear();
 
@@ -62,7 +74,8 @@ namespace mpm
            ++c)
         v[node + c] = 0.;
 
-    if (n_components == NodalLayout::n_components)
+    full_projection = (n_components == NodalLayout::n_components);
+    if (full_projection)
       {
         for (const unsigned int node : active_nodes)
           active_flag[node / NodalLayout::n_components] = false;
@@ -79,6 +92,9 @@ namespace mpm
     values.compress(VectorOperation::add);
     values.update_ghost_values();
 
+    // A partial projection fills the same nodes as the full one before it.
+    if (!full_projection)
+      return;
     solve_nodes = active_nodes;
     const double *v = values.get_values();
     for (const unsigned int node : imported_nodes)

@@ -26,18 +26,12 @@ namespace mpm
     const double       m = p[Layout::mass];
     const Tensor<2, dim> F = Layout::get_deformation_gradient(p);
     const double volume  = determinant(F) * p[Layout::reference_volume];
-    // In-plane block of the Cauchy stress; raw order xx, yy, zz, xy, xz, yz.
-    Tensor<2, dim> sigma;
-    const double * s = &p[Layout::stress];
-    sigma[0][0]      = s[0];
-    sigma[1][1]      = s[1];
-    sigma[0][1] = sigma[1][0] = s[3];
-    if constexpr (dim == 3)
-      {
-        sigma[2][2] = s[2];
-        sigma[0][2] = sigma[2][0] = s[4];
-        sigma[1][2] = sigma[2][1] = s[5];
-      }
+    // The in-plane block of the 3x3 Cauchy stress.
+    const SymmetricTensor<2, 3> stress = Layout::get_stress(p);
+    Tensor<2, dim>              sigma;
+    for (unsigned int a = 0; a < dim; ++a)
+      for (unsigned int b = 0; b < dim; ++b)
+        sigma[a][b] = stress[a][b];
     for (unsigned int i = 0; i < support.n_nodes; ++i)
       {
         const Tensor<1, dim> internal = volume * (sigma * support.grad_N[i]);
@@ -114,9 +108,12 @@ namespace mpm
     double *v = nodes.data();
     for (const unsigned int node : nodes.nodes_to_solve())
       {
+        // A point exactly on a cell face gives the opposite nodes N = 0 and
+        // so zero mass and momentum; their velocity is zero, not 0/0.
         const double m = v[node + NodalLayout::mass];
         for (unsigned int d = 0; d < dim; ++d)
-          v[node + NodalLayout::velocity + d] /= m;
+          v[node + NodalLayout::velocity + d] =
+            m > 0. ? v[node + NodalLayout::velocity + d] / m : 0.;
         dirichlet.apply(node, v + node + NodalLayout::velocity);
       }
   }
@@ -134,7 +131,7 @@ namespace mpm
         const double m = v[node + NodalLayout::mass];
         double *     a = v + node + NodalLayout::force;
         for (unsigned int d = 0; d < dim; ++d)
-          a[d] /= m;
+          a[d] = m > 0. ? a[d] / m : 0.;
         dirichlet.apply(node, a);
         if (advance_velocity)
           for (unsigned int d = 0; d < dim; ++d)

@@ -49,9 +49,8 @@ namespace mpm
         if (is_box)
           for (unsigned int d = 0; d < dim; ++d)
             data.inverse_h[d] = 1. / h[d];
-        data.min_edge = cell->minimum_vertex_distance();
-        cartesian     = cartesian && is_box;
-        min_edge      = std::min(min_edge, data.min_edge);
+        cartesian = cartesian && is_box;
+        min_edge  = std::min(min_edge, cell->minimum_vertex_distance());
       }
 
     const MPI_Comm comm = tria.get_communicator();

@@ -4,6 +4,7 @@
 #include <mpm/core/input_error.h>
 
 #include <algorithm>
+#include <map>
 
 namespace mpm
 {
@@ -84,22 +85,16 @@ namespace mpm
     constraint_of_node.assign(n_local_nodes, -1);
     constraints.clear();
 
-    auto add_normal = [&](const unsigned int node, const Tensor<1, dim> &n) {
-      int &c = constraint_of_node[node / n_components];
-      if (c < 0)
-        {
-          c = constraints.size();
-          constraints.emplace_back();
-        }
-      Constraint &constraint = constraints[c];
-      if (constraint.n_normals == dim)
-        return;
-      Tensor<1, dim> residual = n;
-      for (unsigned int k = 0; k < constraint.n_normals; ++k)
-        residual -= (residual * constraint.normals[k]) * constraint.normals[k];
-      if (residual.norm() > 1e-6)
-        constraint.normals[constraint.n_normals++] = residual / residual.norm();
+    // Per boundary node: is it on a fixed face, and the sum of the outward
+    // normals (weighted by face size) of its slip faces, per boundary id.
+    // Faces of one id are one wall, curved or not: their normals are
+    // averaged. Different ids meet at corners and each removes a direction.
+    struct NodeFaces
+    {
+      bool                                              fixed = false;
+      std::map<types::boundary_id, Tensor<1, dim>> slip_normals;
     };
+    std::map<unsigned int, NodeFaces> boundary_nodes;
 
     for (const auto &cell : dof_handler.active_cell_iterators())
       {
@@ -125,25 +120,44 @@ namespace mpm
             else
               normal = cross_product_3d(face->vertex(1) - face->vertex(0),
                                         face->vertex(2) - face->vertex(0));
-            normal /= normal.norm();
+            if (normal * (face->center() - cell->center()) < 0.)
+              normal = -normal;
 
             for (const unsigned int v : face->vertex_indices())
               {
-                const unsigned int node =
-                  nodes.local_index(face->vertex_dof_index(v, 0));
+                NodeFaces &node = boundary_nodes[nodes.local_index(
+                  face->vertex_dof_index(v, 0))];
                 if (fixed)
-                  for (unsigned int d = 0; d < dim; ++d)
-                    {
-                      Tensor<1, dim> axis;
-                      axis[d] = 1.;
-                      add_normal(node, axis);
-                    }
+                  node.fixed = true;
                 else
-                  add_normal(node, normal);
+                  node.slip_normals[id] += normal;
               }
           }
       }
+
+    for (const auto &[node, faces] : boundary_nodes)
+      {
+        Constraint constraint;
+        if (faces.fixed)
+          constraint.n_normals = dim;
+        else
+          for (const auto &[id, sum] : faces.slip_normals)
+            {
+              // Gram-Schmidt against the walls already taken.
+              Tensor<1, dim> residual = sum / sum.norm();
+              for (unsigned int k = 0; k < constraint.n_normals; ++k)
+                residual -=
+                  (residual * constraint.normals[k]) * constraint.normals[k];
+              if (residual.norm() > 1e-6 && constraint.n_normals < dim)
+                constraint.normals[constraint.n_normals++] =
+                  residual / residual.norm();
+            }
+        constraint_of_node[node / n_components] = constraints.size();
+        constraints.push_back(constraint);
+      }
   }
+
+
 
   template class DirichletConditions<2>;
   template class DirichletConditions<3>;

@@ -130,6 +130,17 @@ namespace mpm
       prm.leave_subsection();
     }
 
+    /**
+     * Thrown for any error other than RunError once a scene has been set up:
+     * it may have happened on one rank only (a file that cannot be written,
+     * say), so the others cannot be trusted to stop.
+     */
+    class UnexpectedRunError : public std::runtime_error
+    {
+    public:
+      using std::runtime_error::runtime_error;
+    };
+
     template <int dim>
     void
     run_scene(ParameterHandler &              prm,
@@ -137,7 +148,22 @@ namespace mpm
               const std::vector<std::string> &body_names)
     {
       Simulator<dim> simulator(prm, material_names, body_names, MPI_COMM_WORLD);
-      simulator.run();
+      try
+        {
+          simulator.run();
+        }
+      catch (const RunError &)
+        {
+          throw;
+        }
+      catch (const ExceptionBase &e)
+        {
+          throw UnexpectedRunError(message_of(e));
+        }
+      catch (const std::exception &e)
+        {
+          throw UnexpectedRunError(e.what());
+        }
     }
 
     void
@@ -269,10 +295,13 @@ namespace mpm
       }
     catch (const std::exception &e)
       {
+        // Possibly on this rank only: stop every rank.
         std::cerr << "mpm: error: " << e.what() << std::endl;
+        const int code =
+          dynamic_cast<const UnexpectedRunError *>(&e) != nullptr ? 3 : 1;
         if (Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
-          MPI_Abort(MPI_COMM_WORLD, 1);
-        return 1;
+          MPI_Abort(MPI_COMM_WORLD, code);
+        return code;
       }
   }
 } // namespace mpm

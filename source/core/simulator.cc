@@ -175,15 +175,15 @@ namespace mpm
       n_internal = std::max(n_internal, m->n_internal_variables());
     points =
       std::make_unique<MaterialPoints<dim>>(triangulation, *mapping, n_internal);
-    points->seed(bodies, materials);
+    points->seed(bodies, materials, basis);
     if (points->n_global_points() == 0)
       throw InputError("No body has a material point inside the grid: check "
                        "the shapes in Bodies against Grid/Arguments.");
 
     transfer = std::make_unique<GridTransfer<dim>>(
       *points, basis, nodes, *dirichlet, gravity);
-    integrator =
-      std::make_unique<ExplicitIntegrator<dim>>(*transfer, materials, scheme, timer);
+    integrator = std::make_unique<ExplicitIntegrator<dim>>(
+      *transfer, materials, scheme, basis.minimum_cell_size(), timer);
 
     std::error_code error;
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
@@ -242,19 +242,15 @@ namespace mpm
     const double                                         step_size)
   {
     // Every rank takes part, so every rank throws the same error.
-    auto describe = [&](const bool here, const Point<dim> &x) {
-      return shared_position(here, x, communicator);
-    };
-
     const bool failed = Utilities::MPI::logical_or(report.failed, communicator);
     if (failed)
       {
-        const std::string where = describe(report.failed, report.failed_position);
-        std::string reason;
-        for (const std::string &r : Utilities::MPI::all_gather(
-               communicator, report.failed ? report.failure : std::string()))
-          if (reason.empty())
-            reason = r;
+        // The reason of the point that is named, so the text is the same
+        // on any number of ranks.
+        const auto [where, rank] = shared_position_and_rank(
+          report.failed, report.failed_position, communicator);
+        const std::string reason = Utilities::MPI::all_gather(
+          communicator, report.failed ? report.failure : std::string())[rank];
         std::ostringstream message;
         message << "The run went unstable in step " << step + 1 << " (t = "
                 << time + step_size << ", dt = " << step_size
@@ -270,8 +266,10 @@ namespace mpm
     if (max_fraction > 1.)
       {
         const std::string where =
-          describe(report.max_cell_fraction >= max_fraction * (1. - 1e-12),
-                   report.fastest_position);
+          shared_position(report.max_cell_fraction >=
+                            max_fraction * (1. - 1e-12),
+                          report.fastest_position,
+                          communicator);
         std::ostringstream message;
         message << "In step " << step + 1 << " (t = " << time + step_size
                 << ", dt = " << step_size << ") the material point at "

@@ -37,11 +37,12 @@ namespace mpm
 
     const bool is_root = Utilities::MPI::this_mpi_process(communicator) == 0;
     if (is_root)
+      file.open(filename);
+    if (Utilities::MPI::logical_or(is_root && !file, communicator))
+      throw InputError("Output/Time series file: cannot write '" + filename +
+                       "'.");
+    if (is_root)
       {
-        file.open(filename);
-        if (!file)
-          throw InputError("Output/Time series file: cannot write '" +
-                           filename + "'.");
         const char *axes = "xyz";
         file << "time,step,dt,kinetic_energy,strain_energy,"
                 "gravitational_energy,total_energy";

@@ -85,6 +85,10 @@ namespace mpm
             names[NodalLayout::force + d]    = "nodal_acceleration";
           }
 
+        // A ghost node that no local point touches holds the owner's raw
+        // sums from the last projection; fetch the owner's solved values.
+        nodes.vector().update_ghost_values();
+
         DataOut<dim> data_out;
         data_out.attach_dof_handler(nodes.get_dof_handler());
         data_out.add_data_vector(nodes.vector(),

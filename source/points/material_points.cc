@@ -63,7 +63,8 @@ namespace mpm
   void
   MaterialPoints<dim>::seed(
     const std::vector<Body<dim>> &                bodies,
-    const std::vector<std::unique_ptr<Material>> &materials)
+    const std::vector<std::unique_ptr<Material>> &materials,
+    const GridBasis<dim> &                        basis)
   {
     struct Candidate
     {
@@ -79,7 +80,6 @@ namespace mpm
       {
         if (!cell->is_locally_owned())
           continue;
-        const double cell_volume = cell->measure();
         for (unsigned int b = 0; b < bodies.size(); ++b)
           {
             const unsigned int n = bodies[b].points_per_cell_direction();
@@ -105,9 +105,10 @@ namespace mpm
                     owned_by_earlier_body = true;
                 if (owned_by_earlier_body)
                   continue;
-                // Each point gets an equal share of the cell's volume.
-                candidates.push_back({x, reference, cell, cell_volume / n_sub,
-                                      b});
+                const double volume =
+                  basis.volume_factor(cell->active_cell_index(), reference) /
+                  n_sub;
+                candidates.push_back({x, reference, cell, volume, b});
               }
           }
       }

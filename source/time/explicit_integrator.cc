@@ -27,10 +27,12 @@ namespace mpm
     GridTransfer<dim> &                           transfer,
     const std::vector<std::unique_ptr<Material>> &materials,
     const Scheme                                  scheme,
+    const double                                  cell_size,
     TimerOutput &                                 timer)
     : transfer(transfer)
     , materials(materials)
     , scheme(scheme)
+    , cell_size(cell_size)
     , timer(timer)
   {}
 
@@ -45,6 +47,15 @@ namespace mpm
       TimerOutput::Scope scope(timer, section);
       work();
     };
+    PointUpdate advance, stress, advance_and_move, all;
+    advance.advance_velocity          = true;
+    stress.update_stress              = true;
+    advance_and_move.advance_velocity = true;
+    advance_and_move.move             = true;
+    all.advance_velocity = all.update_stress = all.move = true;
+    PointUpdate stress_and_move = stress;
+    stress_and_move.move        = true;
+
     switch (scheme)
       {
         case Scheme::MUSL:
@@ -53,12 +64,12 @@ namespace mpm
           timed("nodal solve",
                 [&] { transfer.compute_nodal_acceleration(dt, false); });
           // Point 6: V_p += dt N a.
-          timed("G2P", [&] { advance_point_velocities(dt); });
+          timed("G2P", [&] { update_points(dt, advance, report); });
           // Point 7: v^L from the new point velocities.
           timed("P2G", [&] { transfer.project_momentum(); });
           timed("nodal solve", [&] { transfer.compute_nodal_velocity(); });
           // Points 8-9: stress and positions from v^L.
-          timed("G2P", [&] { update_points(dt, true, report); });
+          timed("G2P", [&] { update_points(dt, stress_and_move, report); });
           break;
         case Scheme::USL:
           timed("P2G", [&] { transfer.project_mass_momentum(true); });
@@ -66,19 +77,16 @@ namespace mpm
             transfer.compute_nodal_velocity();
             transfer.compute_nodal_acceleration(dt, true);
           });
-          timed("G2P", [&] {
-            advance_and_move(dt, report);
-            update_points(dt, false, report);
-          });
+          timed("G2P", [&] { update_points(dt, all, report); });
           break;
         case Scheme::USF:
           timed("P2G", [&] { transfer.project_mass_momentum(false); });
           timed("nodal solve", [&] { transfer.compute_nodal_velocity(); });
-          timed("G2P", [&] { update_points(dt, false, report); });
+          timed("G2P", [&] { update_points(dt, stress, report); });
           timed("P2G", [&] { transfer.project_force(); });
           timed("nodal solve",
                 [&] { transfer.compute_nodal_acceleration(dt, true); });
-          timed("G2P", [&] { advance_and_move(dt, report); });
+          timed("G2P", [&] { update_points(dt, advance_and_move, report); });
           break;
       }
     return report;
@@ -88,45 +96,25 @@ namespace mpm
 
   template <int dim>
   void
-  ExplicitIntegrator<dim>::advance_point_velocities(const double dt)
+  ExplicitIntegrator<dim>::update_points(const double       dt,
+                                         const PointUpdate &update,
+                                         StepReport &       report)
   {
-    transfer.for_each_point([&](Particle &particle, const Support<dim> &support) {
-      const Tensor<1, dim> a = transfer.interpolate(support, NodalLayout::force);
-      const ArrayView<double> p = particle->get_properties();
-      for (unsigned int d = 0; d < dim; ++d)
-        p[Layout::velocity + d] += dt * a[d];
-    });
-  }
-
-
-
-  template <int dim>
-  void
-  ExplicitIntegrator<dim>::advance_and_move(const double dt,
-                                            StepReport & report)
-  {
-    transfer.for_each_point([&](Particle &particle, const Support<dim> &support) {
-      const Tensor<1, dim> a = transfer.interpolate(support, NodalLayout::force);
-      const ArrayView<double> p = particle->get_properties();
-      for (unsigned int d = 0; d < dim; ++d)
-        p[Layout::velocity + d] += dt * a[d];
-      move(particle, support, dt, report);
-    });
-  }
-
-
-
-  template <int dim>
-  void
-  ExplicitIntegrator<dim>::update_points(const double dt,
-                                         const bool   move_points,
-                                         StepReport & report)
-  {
-    transfer.for_each_point([&](Particle &particle, const Support<dim> &support) {
-      update_stress(particle, support, dt, report);
-      if (move_points)
-        move(particle, support, dt, report);
-    });
+    transfer.for_each_point(
+      [&](Particle &particle, const Support<dim> &support) {
+        if (update.advance_velocity)
+          {
+            const Tensor<1, dim> a =
+              transfer.interpolate(support, NodalLayout::force);
+            const ArrayView<double> p = particle->get_properties();
+            for (unsigned int d = 0; d < dim; ++d)
+              p[Layout::velocity + d] += dt * a[d];
+          }
+        if (update.update_stress)
+          update_stress(particle, support, dt, report);
+        if (update.move)
+          move(particle, support, dt, report);
+      });
   }
 
 
@@ -204,7 +192,7 @@ namespace mpm
     for (unsigned int d = 0; d < dim; ++d)
       {
         speed_square += p[Layout::velocity + d] * p[Layout::velocity + d];
-        fraction = std::max(fraction, std::abs(dt * v[d]) / support.spacing);
+        fraction = std::max(fraction, std::abs(dt * v[d]) / cell_size);
       }
     if (!std::isfinite(speed_square) || !std::isfinite(fraction))
       {

@@ -110,12 +110,6 @@ namespace mpm
       return values;
     }
 
-    std::size_t
-    n_active_nodes() const
-    {
-      return solve_nodes.size();
-    }
-
   private:
     const parallel::distributed::Triangulation<dim> &triangulation;
     FESystem<dim>                                    fe;
@@ -129,6 +123,7 @@ namespace mpm
     /** Owned nodes that other ranks may add to in compress(). */
     std::vector<unsigned int> imported_nodes;
     std::vector<unsigned int> solve_nodes;
+    bool                      full_projection = true;
   };
 } // namespace mpm
 

@@ -66,7 +66,7 @@ namespace mpm
     void
     project_force();
 
-    /** v = p / m on every node, then the velocity conditions. */
+    /** v = p / m on every node (0 where m = 0), then the velocity conditions. */
     void
     compute_nodal_velocity();
 

@@ -39,18 +39,14 @@ namespace mpm
       return all_cells_cartesian;
     }
 
-    /** Smallest edge of any cell, over all ranks. */
+    /**
+     * Smallest edge of any cell, over all ranks: the length that limits the
+     * time step and the distance a point may move in one.
+     */
     double
     minimum_cell_size() const
     {
       return min_cell_size;
-    }
-
-    /** Smallest edge of the cell with this active index. */
-    double
-    cell_size(const unsigned int active_cell_index) const
-    {
-      return cells[active_cell_index].min_edge;
     }
 
     void
@@ -60,27 +56,10 @@ namespace mpm
     {
       const CellData &cell = cells[active_cell_index];
       support.n_nodes      = n_vertices;
-      support.spacing      = cell.min_edge;
-
       std::array<Tensor<1, dim>, n_vertices> grad_ref;
+      reference_values(reference_point, support.N, grad_ref);
       for (unsigned int v = 0; v < n_vertices; ++v)
-        {
-          double value = 1.;
-          for (unsigned int d = 0; d < dim; ++d)
-            value *=
-              (v & (1u << d)) ? reference_point[d] : 1. - reference_point[d];
-          support.N[v] = value;
-          for (unsigned int k = 0; k < dim; ++k)
-            {
-              double g = (v & (1u << k)) ? 1. : -1.;
-              for (unsigned int d = 0; d < dim; ++d)
-                if (d != k)
-                  g *= (v & (1u << d)) ? reference_point[d] :
-                                         1. - reference_point[d];
-              grad_ref[v][k] = g;
-            }
-          support.nodes[v] = cell.nodes[v];
-        }
+        support.nodes[v] = cell.nodes[v];
 
       if (cell.is_cartesian)
         {
@@ -90,23 +69,68 @@ namespace mpm
         }
       else
         {
-          Tensor<2, dim> jacobian;
-          for (unsigned int v = 0; v < n_vertices; ++v)
-            jacobian += outer_product(cell.vertices[v], grad_ref[v]);
           const Tensor<2, dim> inverse_transpose =
-            transpose(invert(jacobian));
+            transpose(invert(jacobian(cell, grad_ref)));
           for (unsigned int v = 0; v < n_vertices; ++v)
             support.grad_N[v] = inverse_transpose * grad_ref[v];
         }
     }
 
+    /**
+     * det J of the cell map at a reference point: the volume a point there
+     * stands for, per unit reference volume.
+     */
+    double
+    volume_factor(const unsigned int active_cell_index,
+                  const Point<dim> & reference_point) const
+    {
+      std::array<double, n_vertices>         values;
+      std::array<Tensor<1, dim>, n_vertices> grad_ref;
+      reference_values(reference_point, values, grad_ref);
+      return determinant(jacobian(cells[active_cell_index], grad_ref));
+    }
+
   private:
+    struct CellData;
+
+    /** Q1 values and reference gradients, vertices in deal.II's order. */
+    static void
+    reference_values(const Point<dim> &                      xi,
+                     std::array<double, n_vertices> &        values,
+                     std::array<Tensor<1, dim>, n_vertices> &gradients)
+    {
+      for (unsigned int v = 0; v < n_vertices; ++v)
+        {
+          double value = 1.;
+          for (unsigned int d = 0; d < dim; ++d)
+            value *= (v & (1u << d)) ? xi[d] : 1. - xi[d];
+          values[v] = value;
+          for (unsigned int k = 0; k < dim; ++k)
+            {
+              double g = (v & (1u << k)) ? 1. : -1.;
+              for (unsigned int d = 0; d < dim; ++d)
+                if (d != k)
+                  g *= (v & (1u << d)) ? xi[d] : 1. - xi[d];
+              gradients[v][k] = g;
+            }
+        }
+    }
+
+    static Tensor<2, dim>
+    jacobian(const CellData &                              cell,
+             const std::array<Tensor<1, dim>, n_vertices> &grad_ref)
+    {
+      Tensor<2, dim> J;
+      for (unsigned int v = 0; v < n_vertices; ++v)
+        J += outer_product(cell.vertices[v], grad_ref[v]);
+      return J;
+    }
+
     struct CellData
     {
       std::array<unsigned int, n_vertices> nodes;
       std::array<Tensor<1, dim>, n_vertices> vertices;
       Tensor<1, dim>                         inverse_h;
-      double                                 min_edge     = 0.;
       bool                                   is_cartesian = false;
     };
 

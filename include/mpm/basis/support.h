@@ -24,8 +24,6 @@ namespace mpm
     static constexpr unsigned int max_nodes = 1u << dim;
 
     unsigned int                                n_nodes = 0;
-    /** Smallest node spacing of the support: the cell's shortest edge. */
-    double                                      spacing = 0.;
     std::array<unsigned int, max_nodes>         nodes;
     std::array<double, max_nodes>               N;
     std::array<Tensor<1, dim>, max_nodes>       grad_N;

@@ -16,9 +16,11 @@ namespace mpm
 
   /**
    * Velocity conditions on named boundaries of the background grid:
-   * `fixed` (zero velocity) and `slip` (zero normal velocity). A node on
-   * several slip faces loses each face's normal component; a node with dim
-   * independent normals, or on a fixed face, is fixed.
+   * `fixed` (zero velocity) and `slip` (zero normal velocity). The faces of
+   * one boundary id form one wall, whose normal at a node is the average of
+   * its faces' normals there, so a curved slip wall stays a slip wall. A
+   * node where walls of different ids meet loses each wall's normal
+   * component; a node on a fixed face is fixed.
    */
   template <int dim>
   class DirichletConditions
@@ -36,8 +38,8 @@ namespace mpm
     setup(const GridNodes<dim> &nodes);
 
     /**
-     * Remove the constrained components of the nodal vector that starts at
-     * `component` (the velocity or the force) of `node`.
+     * Remove the constrained components of a nodal vector (velocity or
+     * acceleration) of `node`, which starts at `vector_at_node`.
      */
     void
     apply(const unsigned int node, double *vector_at_node) const

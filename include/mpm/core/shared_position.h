@@ -8,6 +8,7 @@
 #include <array>
 #include <sstream>
 #include <string>
+#include <utility>
 
 namespace mpm
 {
@@ -27,28 +28,34 @@ namespace mpm
   /**
    * For error messages that every rank throws alike, whatever the number of
    * ranks: the lexicographically smallest of the positions held by the
-   * ranks with `has_position`, formatted as "(x, y)". Collective.
+   * ranks with `has_position`, formatted as "(x, y)", and the rank that
+   * holds it. Collective.
    */
   template <int dim>
-  std::string
-  shared_position(const bool        has_position,
-                  const Point<dim> &position,
-                  const MPI_Comm    comm)
+  std::pair<std::string, unsigned int>
+  shared_position_and_rank(const bool        has_position,
+                           const Point<dim> &position,
+                           const MPI_Comm    comm)
   {
     std::array<double, dim + 1> mine;
     mine[0] = has_position ? 1. : 0.;
     for (unsigned int d = 0; d < dim; ++d)
       mine[d + 1] = position[d];
-    bool       found = false;
-    Point<dim> best;
-    for (const auto &other : Utilities::MPI::all_gather(comm, mine))
-      if (other[0] == 1.)
+    bool         found = false;
+    Point<dim>   best;
+    unsigned int best_rank = 0;
+    const auto   all       = Utilities::MPI::all_gather(comm, mine);
+    for (unsigned int rank = 0; rank < all.size(); ++rank)
+      if (all[rank][0] == 1.)
         {
           Point<dim> p;
           for (unsigned int d = 0; d < dim; ++d)
-            p[d] = other[d + 1];
+            p[d] = all[rank][d + 1];
           if (!found || lexicographically_less(p, best))
-            best = p;
+            {
+              best      = p;
+              best_rank = rank;
+            }
           found = true;
         }
     std::ostringstream s;
@@ -56,7 +63,17 @@ namespace mpm
     for (unsigned int d = 0; d < dim; ++d)
       s << (d ? ", " : "") << best[d];
     s << ")";
-    return s.str();
+    return {s.str(), best_rank};
+  }
+
+  /** The position alone, see shared_position_and_rank(). */
+  template <int dim>
+  std::string
+  shared_position(const bool        has_position,
+                  const Point<dim> &position,
+                  const MPI_Comm    comm)
+  {
+    return shared_position_and_rank(has_position, position, comm).first;
   }
 } // namespace mpm
 

@@ -5,6 +5,7 @@
 #include <deal.II/fe/mapping.h>
 #include <deal.II/particles/particle_handler.h>
 
+#include <mpm/basis/grid_basis.h>
 #include <mpm/bodies/body.h>
 #include <mpm/materials/material.h>
 #include <mpm/points/point_layout.h>
@@ -34,12 +35,14 @@ namespace mpm
     /**
      * Fill every locally owned cell with the points of the bodies that
      * contain them: n^dim points per cell at the centres of a regular
-     * subdivision, each with the volume of its sub-cell. Ids are unique
-     * across ranks.
+     * subdivision of the reference cell, each with the volume of its
+     * sub-cell by the midpoint rule (exact for bilinear cells). Ids are
+     * unique across ranks.
      */
     void
-    seed(const std::vector<Body<dim>> &                  bodies,
-         const std::vector<std::unique_ptr<Material>> &materials);
+    seed(const std::vector<Body<dim>> &                bodies,
+         const std::vector<std::unique_ptr<Material>> &materials,
+         const GridBasis<dim> &                        basis);
 
     /**
      * Put every point into the cell (and onto the rank) that contains its

@@ -52,13 +52,6 @@ namespace mpm
       return v;
     }
 
-    static void
-    set_velocity(const ArrayView<double> &p, const Tensor<1, dim> &v)
-    {
-      for (unsigned int d = 0; d < dim; ++d)
-        p[velocity + d] = v[d];
-    }
-
     static Tensor<2, dim>
     get_deformation_gradient(const ArrayView<const double> &p)
     {

@@ -1,7 +1,6 @@
 #ifndef mpm_time_explicit_integrator_h
 #define mpm_time_explicit_integrator_h
 
-#include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/point.h>
 #include <deal.II/base/timer.h>
 
@@ -9,6 +8,7 @@
 #include <mpm/materials/material.h>
 
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace mpm
@@ -23,8 +23,9 @@ namespace mpm
    *   nodal velocity.
    * - MUSL (default), Wieckowski (2004) section 3.5, points 2-9: point
    *   velocities advanced with the nodal acceleration, projected once more
-   *   to the grid (v^L), and stress and positions updated with v^L. This
-   *   removes the division by near-zero nodal masses from the stress update.
+   *   to the grid (v^L), and stress and positions updated with v^L. The
+   *   stress then sees the mass-weighted point velocities instead of f/m,
+   *   which a node with a tiny mass turns into a spurious strain rate.
    */
   template <int dim>
   class ExplicitIntegrator
@@ -40,20 +41,25 @@ namespace mpm
     /** What one step saw, for the checks that follow it. */
     struct StepReport
     {
-      double     max_speed         = 0.;
-      double     max_cell_fraction = 0.;
-      Point<dim> fastest_position;
-      bool       failed = false;
-      Point<dim> failed_position;
+      double      max_speed         = 0.;
+      double      max_cell_fraction = 0.;
+      Point<dim>  fastest_position;
+      bool        failed = false;
+      Point<dim>  failed_position;
       std::string failure;
     };
 
     static Scheme
     parse_scheme(const std::string &name);
 
+    /**
+     * `cell_size` is the smallest cell edge of the grid: no point may move
+     * farther in one step.
+     */
     ExplicitIntegrator(GridTransfer<dim> &                           transfer,
                        const std::vector<std::unique_ptr<Material>> &materials,
                        const Scheme                                  scheme,
+                       const double                                  cell_size,
                        TimerOutput &                                 timer);
 
     /** Advance all points by dt; the points are not yet re-sorted. */
@@ -63,28 +69,30 @@ namespace mpm
   private:
     using Layout      = PointLayout<dim>;
     using NodalLayout = typename GridNodes<dim>::NodalLayout;
-    using Particle    = typename Particles::ParticleHandler<dim>::particle_iterator;
+    using Particle = typename Particles::ParticleHandler<dim>::particle_iterator;
 
-    /** V_p += dt a(x_p). */
-    void
-    advance_point_velocities(const double dt);
+    /** What one grid-to-point pass does at every point, in this order. */
+    struct PointUpdate
+    {
+      /** V_p += dt a(x_p). */
+      bool advance_velocity = false;
+      /** L from the nodal velocity, then F, stress and work density. */
+      bool update_stress = false;
+      /** x_p += dt v(x_p). */
+      bool move = false;
+    };
 
-    /**
-     * For every point: L from the nodal velocity, then F, stress and work
-     * density; then, if `move`, x_p += dt v(x_p).
-     */
+    /** One pass over the points, with each point's support evaluated once. */
     void
-    update_points(const double dt, const bool move, StepReport &report);
-
-    /** USL and USF: V_p += dt a(x_p) and x_p += dt v(x_p) in one pass. */
-    void
-    advance_and_move(const double dt, StepReport &report);
+    update_points(const double       dt,
+                  const PointUpdate &update,
+                  StepReport &       report);
 
     void
-    update_stress(Particle &            particle,
-                  const Support<dim> &  support,
-                  const double          dt,
-                  StepReport &          report);
+    update_stress(Particle &          particle,
+                  const Support<dim> &support,
+                  const double        dt,
+                  StepReport &        report);
 
     void
     move(Particle &          particle,
@@ -95,6 +103,7 @@ namespace mpm
     GridTransfer<dim> &                           transfer;
     const std::vector<std::unique_ptr<Material>> &materials;
     const Scheme                                  scheme;
+    const double                                  cell_size;
     TimerOutput &                                 timer;
   };
 } // namespace mpm
