@@ -1,5 +1,4 @@
 #include <mpm/core/input_error.h>
-#include <mpm/core/shared_position.h>
 #include <mpm/time/explicit_integrator.h>
 
 #include <cmath>
@@ -135,16 +134,9 @@ namespace mpm
     const double J_new = determinant(F_new);
     if (!(J_new > 0.))
       {
-        if (!report.failed ||
-            lexicographically_less(particle->get_location(),
-                                   report.failed_position))
-          {
-            report.failed          = true;
-            report.failed_position = particle->get_location();
-            report.failure =
-              "a material point was inverted (det F = " +
-              std::to_string(J_new) + ")";
-          }
+        report.record_failure(particle->get_location(),
+                              "a material point was inverted (det F = " +
+                                std::to_string(J_new) + ")");
         return;
       }
 
@@ -196,12 +188,7 @@ namespace mpm
       }
     if (!std::isfinite(speed_square) || !std::isfinite(fraction))
       {
-        if (!report.failed || lexicographically_less(x, report.failed_position))
-          {
-            report.failed          = true;
-            report.failed_position = x;
-            report.failure         = "a material point has a non-finite velocity";
-          }
+        report.record_failure(x, "a material point has a non-finite velocity");
         return;
       }
     // Among points that move alike, report the lexicographically first, so

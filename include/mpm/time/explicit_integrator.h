@@ -5,6 +5,7 @@
 #include <deal.II/base/timer.h>
 
 #include <mpm/assembly/grid_transfer.h>
+#include <mpm/core/shared_position.h>
 #include <mpm/materials/material.h>
 
 #include <memory>
@@ -47,6 +48,21 @@ namespace mpm
       bool        failed = false;
       Point<dim>  failed_position;
       std::string failure;
+
+      /**
+       * Keep the failure of the lexicographically first point, so that the
+       * message does not depend on the order or number of ranks.
+       */
+      void
+      record_failure(const Point<dim> &position, const std::string &reason)
+      {
+        if (!failed || lexicographically_less(position, failed_position))
+          {
+            failed          = true;
+            failed_position = position;
+            failure         = reason;
+          }
+      }
     };
 
     static Scheme
