@@ -26,4 +26,15 @@ namespace mpm
               (lambda * trace(D) * unit_symmetric_tensor<3>() + 2. * mu * D +
                rotation);
   }
+
+
+
+  SymmetricTensor<4, 3>
+  LinearElastic::spatial_tangent(const StepKinematics &,
+                                 const SymmetricTensor<2, 3> &,
+                                 const ArrayView<const double> &) const
+  {
+    const SymmetricTensor<2, 3> I = unit_symmetric_tensor<3>();
+    return lambda * outer_product(I, I) + 2. * mu * identity_tensor<3>();
+  }
 } // namespace mpm

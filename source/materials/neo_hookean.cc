@@ -23,4 +23,20 @@ namespace mpm
     const SymmetricTensor<2, 3> I = unit_symmetric_tensor<3>();
     stress = (mu * (b - I) + lambda * std::log(J) * I) / J;
   }
+
+
+
+  SymmetricTensor<4, 3>
+  NeoHookean::spatial_tangent(const StepKinematics &kinematics,
+                              const SymmetricTensor<2, 3> &,
+                              const ArrayView<const double> &) const
+  {
+    // tau = mu (b - I) + lambda ln(J) I gives, for the Truesdell rate of tau,
+    // c_tau = lambda I (x) I + 2 (mu - lambda ln J) II; c = c_tau / J.
+    const double                J = determinant(kinematics.F_new);
+    const SymmetricTensor<2, 3> I = unit_symmetric_tensor<3>();
+    return (lambda * outer_product(I, I) +
+            2. * (mu - lambda * std::log(J)) * identity_tensor<3>()) /
+           J;
+  }
 } // namespace mpm

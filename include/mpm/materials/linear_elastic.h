@@ -9,6 +9,9 @@ namespace mpm
    * Hypoelastic isotropic law integrated with the Jaumann rate, as in [W]:
    * sigma += dt (lambda tr(D) I + 2 mu D + W sigma - sigma W),
    * with D and W the symmetric and skew parts of the velocity gradient.
+   * Its tangent is the isotropic elastic stiffness, which is the consistent
+   * one only to first order in the stress over the modulus: the law has no
+   * stored energy, and implicit schemes converge with it linearly.
    */
   class LinearElastic : public Material
   {
@@ -21,6 +24,12 @@ namespace mpm
     update_stress(const StepKinematics &   kinematics,
                   SymmetricTensor<2, 3> &  stress,
                   const ArrayView<double> &internal_variables) const override;
+
+    SymmetricTensor<4, 3>
+    spatial_tangent(const StepKinematics &         kinematics,
+                    const SymmetricTensor<2, 3> &  stress,
+                    const ArrayView<const double> &internal_variables)
+      const override;
   };
 } // namespace mpm
 

@@ -55,6 +55,17 @@ namespace mpm
                   SymmetricTensor<2, 3> &  stress,
                   const ArrayView<double> &internal_variables) const = 0;
 
+    /**
+     * The spatial tangent c of the Cauchy stress, c = c_tau / J, where c_tau
+     * relates the Truesdell rate of the Kirchhoff stress to the rate of
+     * deformation: the material part of the updated-Lagrangian tangent,
+     * [I] eqs. (24) and (33). Evaluated at the state update_stress() left.
+     */
+    virtual SymmetricTensor<4, 3>
+    spatial_tangent(const StepKinematics &       kinematics,
+                    const SymmetricTensor<2, 3> &stress,
+                    const ArrayView<const double> &internal_variables) const = 0;
+
     /** How many internal variables a point of this law carries. */
     virtual unsigned int
     n_internal_variables() const

@@ -22,6 +22,12 @@ namespace mpm
     update_stress(const StepKinematics &   kinematics,
                   SymmetricTensor<2, 3> &  stress,
                   const ArrayView<double> &internal_variables) const override;
+
+    SymmetricTensor<4, 3>
+    spatial_tangent(const StepKinematics &         kinematics,
+                    const SymmetricTensor<2, 3> &  stress,
+                    const ArrayView<const double> &internal_variables)
+      const override;
   };
 } // namespace mpm
 

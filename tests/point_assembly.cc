@@ -1,0 +1,154 @@
+// The updated-Lagrangian point assembly that the implicit schemes share:
+// the tangent (material + geometric stiffness) must be the derivative of the
+// internal force with respect to the nodal displacement increments. Checked
+// against central differences at random pre-deformed states on a distorted
+// cell, for the neo-Hookean law (whose tangent is exact), in 2D and 3D;
+// and the internal forces of a point sum to zero (equilibrium of a single
+// integration point under a constant stress).
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/tria.h>
+
+#include <mpm/assembly/point_assembly.h>
+#include <mpm/materials/material.h>
+#include <mpm/points/point_layout.h>
+
+#include <random>
+
+#include "tests.h"
+
+using namespace dealii;
+using namespace mpm;
+
+template <int dim>
+void
+test()
+{
+  deallog << "dim = " << dim << std::endl;
+  ParameterHandler prm;
+  Material::declare_parameters(prm);
+  prm.set("Model", "neo-Hookean");
+  prm.set("Young's modulus", "1e6");
+  prm.set("Poisson's ratio", "0.3");
+  const auto material = Material::create(prm, "rubber", "rubber");
+
+  std::mt19937                           rng(7);
+  std::uniform_real_distribution<double> uniform(-1., 1.);
+
+  // A support with gradients of a distorted Q1 cell: shape functions of the
+  // unit cell mapped by a random affine map plus the Q1 structure.
+  Support<dim> support;
+  support.n_nodes = 1u << dim;
+  Tensor<2, dim> map = unit_symmetric_tensor<dim>();
+  for (unsigned int a = 0; a < dim; ++a)
+    for (unsigned int b = 0; b < dim; ++b)
+      map[a][b] += 0.2 * uniform(rng);
+  const Tensor<2, dim> map_inverse_transpose = transpose(invert(map));
+  Point<dim>           xi;
+  for (unsigned int d = 0; d < dim; ++d)
+    xi[d] = 0.5 + 0.4 * uniform(rng);
+  for (unsigned int v = 0; v < support.n_nodes; ++v)
+    {
+      Tensor<1, dim> grad;
+      double         value = 1.;
+      for (unsigned int d = 0; d < dim; ++d)
+        value *= (v & (1u << d)) ? xi[d] : 1. - xi[d];
+      for (unsigned int k = 0; k < dim; ++k)
+        {
+          double g = (v & (1u << k)) ? 1. : -1.;
+          for (unsigned int d = 0; d < dim; ++d)
+            if (d != k)
+              g *= (v & (1u << d)) ? xi[d] : 1. - xi[d];
+          grad[k] = g;
+        }
+      support.N[v]      = value;
+      support.grad_N[v] = map_inverse_transpose * grad;
+      support.nodes[v]  = v;
+    }
+
+  // A pre-deformed state F_n and a random displacement increment.
+  Tensor<2, dim> F_n = unit_symmetric_tensor<dim>();
+  for (unsigned int a = 0; a < dim; ++a)
+    for (unsigned int b = 0; b < dim; ++b)
+      F_n[a][b] += 0.15 * uniform(rng);
+  std::vector<Tensor<1, dim>> du(support.n_nodes);
+  for (auto &u : du)
+    for (unsigned int d = 0; d < dim; ++d)
+      u[d] = 0.05 * uniform(rng);
+  const double V0 = 0.3;
+
+  // Internal force and, optionally, tangent at a displacement increment.
+  auto evaluate = [&](const std::vector<Tensor<1, dim>> &u,
+                      Vector<double> &                   force,
+                      FullMatrix<double> *               tangent) {
+    const Tensor<2, dim> dF =
+      PointAssembly<dim>::deformation_increment(support, u);
+    StepKinematics k;
+    k.F_old = PointLayout<dim>::embed(F_n, 1.);
+    k.F_new = PointLayout<dim>::embed(dF * F_n, 1.);
+    k.dt    = 1.;
+    SymmetricTensor<2, 3> stress;
+    material->update_stress(k, stress, {});
+    const SymmetricTensor<4, 3> c = material->spatial_tangent(k, stress, {});
+    PointAssembly<dim>::internal_force(support,
+                                       dF,
+                                       determinant(dF * F_n) * V0,
+                                       stress,
+                                       &c,
+                                       force,
+                                       tangent);
+  };
+
+  Vector<double>     force;
+  FullMatrix<double> tangent;
+  evaluate(du, force, &tangent);
+
+  double equilibrium = 0.;
+  for (unsigned int a = 0; a < dim; ++a)
+    {
+      double sum = 0.;
+      for (unsigned int i = 0; i < support.n_nodes; ++i)
+        sum += force(i * dim + a);
+      equilibrium = std::max(equilibrium, std::abs(sum));
+    }
+  mpm_tests::check("internal forces of a point sum to zero",
+                   equilibrium < 1e-9 * force.l2_norm());
+
+  // Central differences, column by column.
+  const double       h     = 1e-6;
+  double             error = 0.;
+  const unsigned int n     = support.n_nodes * dim;
+  for (unsigned int j = 0; j < n; ++j)
+    {
+      auto plus = du, minus = du;
+      plus[j / dim][j % dim] += h;
+      minus[j / dim][j % dim] -= h;
+      Vector<double> f_plus, f_minus;
+      evaluate(plus, f_plus, nullptr);
+      evaluate(minus, f_minus, nullptr);
+      for (unsigned int i = 0; i < n; ++i)
+        error = std::max(error,
+                         std::abs((f_plus(i) - f_minus(i)) / (2 * h) -
+                                  tangent(i, j)));
+    }
+  mpm_tests::check("tangent = d(internal force)/d(displacement) to 1e-6 "
+                   "relative (neo-Hookean, material + geometric)",
+                   error < 1e-6 * tangent.frobenius_norm());
+  FullMatrix<double> transposed;
+  transposed.copy_transposed(tangent);
+  transposed.add(-1., tangent);
+  mpm_tests::check("tangent is symmetric",
+                   transposed.frobenius_norm() <
+                     1e-12 * tangent.frobenius_norm());
+}
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  mpm_tests::initlog();
+  test<2>();
+  test<3>();
+}
