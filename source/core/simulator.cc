@@ -5,6 +5,7 @@
 #include <mpm/core/input_error.h>
 #include <mpm/core/parse.h>
 #include <mpm/core/shared_position.h>
+#include <mpm/boundary/point_loads.h>
 #include <mpm/core/simulator.h>
 
 #include <sys/resource.h>
@@ -32,6 +33,8 @@ namespace mpm
 
     BackgroundGrid<dim>::declare_parameters(prm);
     DirichletConditions<dim>::declare_parameters(prm);
+    PointLoads<dim>::declare_parameters(prm);
+    QuasiStaticIntegrator<dim>::declare_parameters(prm);
 
     prm.enter_subsection("Time stepping");
     prm.declare_entry("End time", "1", Patterns::Double(0.),
@@ -45,6 +48,15 @@ namespace mpm
     prm.declare_entry("CFL number", "0.3", Patterns::Double(0., 1.),
                       "Fraction of the stability limit used by the automatic "
                       "time step, 0 < CFL <= 1.");
+    prm.declare_entry("Scheme", "explicit",
+                      Patterns::Selection("explicit|quasi-static"),
+                      "explicit: dynamic explicit MPM with the Update "
+                      "scheme below. quasi-static: equilibrium in Load steps "
+                      "over the pseudo-time End time, loads and gravity "
+                      "ramped with t / End time, solved by Newton (see "
+                      "Newton).");
+    prm.declare_entry("Load steps", "10", Patterns::Integer(1),
+                      "Quasi-static: number of equal load steps.");
     prm.declare_entry("Update scheme", "MUSL",
                       Patterns::Selection("USF|USL|MUSL"),
                       "Order of the explicit update: USF (update stress "
@@ -119,6 +131,8 @@ namespace mpm
     end_time        = prm.get_double("End time");
     fixed_time_step = prm.get_double("Time step");
     cfl_number      = prm.get_double("CFL number");
+    n_load_steps    = prm.get_integer("Load steps");
+    const bool use_quasi_static = prm.get("Scheme") == "quasi-static";
     const typename ExplicitIntegrator<dim>::Scheme scheme =
       ExplicitIntegrator<dim>::parse_scheme(prm.get("Update scheme"));
     prm.leave_subsection();
@@ -176,6 +190,7 @@ namespace mpm
     points =
       std::make_unique<MaterialPoints<dim>>(triangulation, *mapping, n_internal);
     points->seed(bodies, materials, basis);
+    PointLoads<dim>(prm).apply(*points);
     if (points->n_global_points() == 0)
       throw InputError("No body has a material point inside the grid: check "
                        "the shapes in Bodies against Grid/Arguments.");
@@ -184,6 +199,9 @@ namespace mpm
       *points, basis, nodes, *dirichlet, gravity);
     integrator = std::make_unique<ExplicitIntegrator<dim>>(
       *transfer, materials, scheme, basis.minimum_cell_size(), timer);
+    if (use_quasi_static)
+      quasi_static = std::make_unique<QuasiStaticIntegrator<dim>>(
+        prm, *points, basis, *dirichlet, materials, gravity, pcout, timer);
 
     std::error_code error;
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
@@ -199,7 +217,7 @@ namespace mpm
       *points);
 
     // A fixed time step must be stable for the initial state.
-    if (fixed_time_step > 0.)
+    if (fixed_time_step > 0. && !quasi_static)
       {
         double max_speed = 0.;
         for (const auto &particle : points->handler())
@@ -319,6 +337,47 @@ namespace mpm
 
 
   template <int dim>
+  double
+  Simulator<dim>::explicit_step()
+  {
+    const auto report = integrator->step(dt);
+    check_step(report, dt);
+    return Utilities::MPI::max(report.max_speed, communicator);
+  }
+
+
+
+  template <int dim>
+  void
+  Simulator<dim>::load_step()
+  {
+    const unsigned int max_cuts = 4;
+    for (unsigned int cut = 0;; ++cut)
+      {
+        try
+          {
+            pcout << "  load step " << step + 1 << ": load factor "
+                  << (time + dt) / end_time << std::endl;
+            quasi_static->step((time + dt) / end_time);
+            return;
+          }
+        catch (const RunError &e)
+          {
+            if (cut == max_cuts)
+              throw RunError(std::string(e.what()) + " Cut " +
+                             std::to_string(max_cuts) +
+                             " times; giving up. The last good state is in "
+                             "the output written so far.");
+            dt /= 2.;
+            pcout << "  " << e.what() << " Cutting the step to " << dt << "."
+                  << std::endl;
+          }
+      }
+  }
+
+
+
+  template <int dim>
   void
   Simulator<dim>::run()
   {
@@ -350,20 +409,25 @@ namespace mpm
     const double time_tolerance = 1e-12 * end_time;
     while (time < end_time - time_tolerance)
       {
-        dt = (fixed_time_step > 0. ? fixed_time_step :
-                                     stable_time_step(max_speed));
-        if (time + dt > end_time - time_tolerance)
-          dt = end_time - time;
-
-        const auto report = integrator->step(dt);
-        check_step(report, dt);
+        if (quasi_static)
+          {
+            dt = std::min(end_time / n_load_steps, end_time - time);
+            load_step();
+          }
+        else
+          {
+            dt = (fixed_time_step > 0. ? fixed_time_step :
+                                         stable_time_step(max_speed));
+            if (time + dt > end_time - time_tolerance)
+              dt = end_time - time;
+            max_speed = explicit_step();
+          }
         {
           TimerOutput::Scope t(timer, "sort points");
           points->sort();
         }
         time += dt;
         ++step;
-        max_speed = Utilities::MPI::max(report.max_speed, communicator);
 
         const bool at_end = !(time < end_time - time_tolerance);
         if (at_end || time_series_interval == 0. ||
@@ -380,6 +444,13 @@ namespace mpm
              at_end))
           {
             TimerOutput::Scope t(timer, "output");
+            if (quasi_static)
+              {
+                // The quasi-static scheme does not use the nodal vector;
+                // project for the grid output.
+                transfer->project_mass_momentum(false);
+                transfer->compute_nodal_velocity();
+              }
             vtu_output->write(time, *points, nodes, *mapping);
             while (output_interval > 0. &&
                    next_output <= time + time_tolerance)

@@ -58,8 +58,12 @@ namespace mpm
           Layout::n_properties(points.n_internal_variables()),
           DataComponentInterpretation::component_is_scalar);
       for (unsigned int d = 0; d < dim; ++d)
-        interpretation[Layout::velocity + d] =
-          DataComponentInterpretation::component_is_part_of_vector;
+        {
+          interpretation[Layout::velocity + d] =
+            DataComponentInterpretation::component_is_part_of_vector;
+          interpretation[Layout::point_load + d] =
+            DataComponentInterpretation::component_is_part_of_vector;
+        }
 
       Particles::DataOut<dim> data_out;
       data_out.build_patches(points.handler(),

@@ -17,7 +17,10 @@ namespace mpm
     n[mass]             = "mass";
     n[reference_volume] = "reference_volume";
     for (unsigned int d = 0; d < dim; ++d)
-      n[velocity + d] = "velocity";
+      {
+        n[velocity + d]   = "velocity";
+        n[point_load + d] = "point_load";
+      }
     const char *axes = "xyz";
     for (unsigned int i = 0; i < dim; ++i)
       for (unsigned int j = 0; j < dim; ++j)

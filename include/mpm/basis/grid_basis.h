@@ -76,6 +76,13 @@ namespace mpm
         }
     }
 
+    /** GridNodes index of vertex v of a locally owned cell. */
+    unsigned int
+    node_of(const unsigned int active_cell_index, const unsigned int v) const
+    {
+      return cells[active_cell_index].nodes[v];
+    }
+
     /**
      * det J of the cell map at a reference point: the volume a point there
      * stands for, per unit reference volume.

@@ -65,7 +65,7 @@ namespace mpm
         }
     }
 
-  private:
+    /** The directions a node may not move in. */
     struct Constraint
     {
       /** Orthonormal; n_normals == dim means fixed. */
@@ -73,6 +73,16 @@ namespace mpm
       unsigned int                    n_normals = 0;
     };
 
+    /** The constraint of a node (a GridNodes local index), or nullptr. */
+    const Constraint *
+    constraint_of(const unsigned int node) const
+    {
+      const int c = constraint_of_node[node / GridNodes<dim>::NodalLayout::
+                                                n_components];
+      return c < 0 ? nullptr : &constraints[c];
+    }
+
+  private:
     std::vector<types::boundary_id> fixed_ids;
     std::vector<types::boundary_id> slip_ids;
     std::vector<std::string>        fixed_names;

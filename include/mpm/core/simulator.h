@@ -18,6 +18,7 @@
 #include <mpm/output/vtu_output.h>
 #include <mpm/points/material_points.h>
 #include <mpm/time/explicit_integrator.h>
+#include <mpm/time/quasi_static_integrator.h>
 
 #include <memory>
 #include <string>
@@ -79,6 +80,17 @@ namespace mpm
     void
     report_progress(const bool force);
 
+    /** One explicit step of size dt; returns the largest point speed. */
+    double
+    explicit_step();
+
+    /**
+     * One quasi-static load step of size dt, cut in half (up to 4 times) if
+     * Newton does not converge.
+     */
+    void
+    load_step();
+
     const MPI_Comm     communicator;
     ConditionalOStream pcout;
     TimerOutput        timer;
@@ -94,6 +106,7 @@ namespace mpm
     std::unique_ptr<MaterialPoints<dim>>      points;
     std::unique_ptr<GridTransfer<dim>>        transfer;
     std::unique_ptr<ExplicitIntegrator<dim>>  integrator;
+    std::unique_ptr<QuasiStaticIntegrator<dim>> quasi_static;
     std::unique_ptr<VtuOutput<dim>>           vtu_output;
     std::unique_ptr<TimeSeries<dim>>          time_series;
 
@@ -101,6 +114,7 @@ namespace mpm
     double         end_time;
     double         fixed_time_step;
     double         cfl_number;
+    unsigned int   n_load_steps;
     std::string    output_directory;
     bool           write_paraview;
     double         output_interval;

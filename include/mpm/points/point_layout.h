@@ -19,6 +19,7 @@ namespace mpm
    * `work density` is the stress work per unit reference volume, the
    * point's strain energy for elastic laws. Internal variables of the laws
    * follow at the end; a scene sizes them to the largest law it uses.
+   * `point load` is the external force on the point at full load.
    */
   template <int dim>
   struct PointLayout
@@ -26,7 +27,9 @@ namespace mpm
     static constexpr unsigned int mass                 = 0;
     static constexpr unsigned int reference_volume     = 1;
     static constexpr unsigned int velocity             = 2;
-    static constexpr unsigned int deformation_gradient = velocity + dim;
+    /** Force applied to the point at full load (quasi-static loads). */
+    static constexpr unsigned int point_load           = velocity + dim;
+    static constexpr unsigned int deformation_gradient = point_load + dim;
     static constexpr unsigned int stress = deformation_gradient + dim * dim;
     static constexpr unsigned int work_density       = stress + 6;
     static constexpr unsigned int body_id            = work_density + 1;

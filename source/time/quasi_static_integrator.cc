@@ -1,0 +1,416 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_nothing.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/sparsity_tools.h>
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_solver.h>
+
+#include <mpm/assembly/point_assembly.h>
+#include <mpm/core/input_error.h>
+#include <mpm/time/quasi_static_integrator.h>
+
+#include <iomanip>
+#include <sstream>
+
+namespace mpm
+{
+  template <int dim>
+  void
+  QuasiStaticIntegrator<dim>::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Newton");
+    prm.declare_entry("Tolerance", "1e-8", Patterns::Double(0.),
+                      "Convergence when the out-of-balance force ratio "
+                      "alpha = |f_ext - f_int| / max(|f_ext|, |f_int|) "
+                      "(Beuth et al. eq. 31) falls below this.");
+    prm.declare_entry("Maximum iterations", "25", Patterns::Integer(1),
+                      "Iterations before a load step counts as failed and "
+                      "is cut in half.");
+    prm.declare_entry("Variant", "full", Patterns::Selection("full|modified"),
+                      "full: a new tangent every iteration (quadratic "
+                      "convergence). modified: the tangent of the step's "
+                      "first iteration throughout, as in Beuth et al.");
+    prm.declare_entry("Linear solver", "direct",
+                      Patterns::Selection("direct|CG-AMG"),
+                      "direct: sparse LU (Trilinos Amesos), for small "
+                      "problems. CG-AMG: conjugate gradients with Trilinos ML "
+                      "algebraic multigrid, for large ones.");
+    prm.leave_subsection();
+  }
+
+
+
+  template <int dim>
+  QuasiStaticIntegrator<dim>::QuasiStaticIntegrator(
+    ParameterHandler &                            prm,
+    MaterialPoints<dim> &                         points,
+    const GridBasis<dim> &                        basis,
+    const DirichletConditions<dim> &              dirichlet,
+    const std::vector<std::unique_ptr<Material>> &materials,
+    const Tensor<1, dim> &                        gravity,
+    ConditionalOStream &                          pcout,
+    TimerOutput &                                 timer)
+    : points(points)
+    , basis(basis)
+    , dirichlet(dirichlet)
+    , materials(materials)
+    , gravity(gravity)
+    , pcout(pcout)
+    , timer(timer)
+    , dof_handler(points.get_triangulation())
+  {
+    prm.enter_subsection("Newton");
+    tolerance       = prm.get_double("Tolerance");
+    max_iterations  = prm.get_integer("Maximum iterations");
+    modified_newton = prm.get("Variant") == "modified";
+    linear_solver   = prm.get("Linear solver");
+    prm.leave_subsection();
+    if (!(tolerance > 0.))
+      throw InputError("Newton/Tolerance must be positive.");
+
+    fe_collection.push_back(FESystem<dim>(FE_Q<dim>(1), dim));
+    fe_collection.push_back(FESystem<dim>(FE_Nothing<dim>(), dim));
+  }
+
+
+
+  template <int dim>
+  void
+  QuasiStaticIntegrator<dim>::setup_system()
+  {
+    // Unknowns only on cells that hold points.
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        cell->set_active_fe_index(
+          points.handler().n_particles_in_cell(cell) > 0 ? 0 : 1);
+    dof_handler.distribute_dofs(fe_collection);
+    owned_dofs = dof_handler.locally_owned_dofs();
+    DoFTools::extract_locally_relevant_dofs(dof_handler, relevant_dofs);
+
+    // Grid conditions on the nodes of active cells: a wall along an axis
+    // fixes that component; a slanted wall ties the components so that the
+    // normal displacement vanishes.
+    constraints.clear();
+    constraints.reinit(relevant_dofs);
+    DoFTools::make_hanging_node_constraints(dof_handler, constraints);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        if (!cell->is_locally_owned() || cell->active_fe_index() != 0)
+          continue;
+        for (const unsigned int v : cell->vertex_indices())
+          {
+            const auto *constraint = dirichlet.constraint_of(
+              basis.node_of(cell->active_cell_index(), v));
+            if (constraint == nullptr)
+              continue;
+            std::array<types::global_dof_index, dim> dofs;
+            for (unsigned int a = 0; a < dim; ++a)
+              dofs[a] = cell->vertex_dof_index(v, a, 0);
+            if (constraint->n_normals == dim)
+              {
+                for (unsigned int a = 0; a < dim; ++a)
+                  if (!constraints.is_constrained(dofs[a]))
+                    constraints.add_line(dofs[a]);
+                continue;
+              }
+            for (unsigned int k = 0; k < constraint->n_normals; ++k)
+              {
+                const Tensor<1, dim> &n     = constraint->normals[k];
+                unsigned int          pivot = 0;
+                for (unsigned int a = 1; a < dim; ++a)
+                  if (std::abs(n[a]) > std::abs(n[pivot]))
+                    pivot = a;
+                if (constraints.is_constrained(dofs[pivot]))
+                  continue;
+                const bool along_axis =
+                  std::abs(std::abs(n[pivot]) - 1.) < 1e-12;
+                if (!along_axis && constraint->n_normals > 1)
+                  throw InputError(
+                    "Boundary conditions: the quasi-static scheme supports "
+                    "corners between slip walls only when the walls are "
+                    "aligned with the axes.");
+                constraints.add_line(dofs[pivot]);
+                if (!along_axis)
+                  for (unsigned int a = 0; a < dim; ++a)
+                    if (a != pivot)
+                      constraints.add_entry(dofs[pivot],
+                                            dofs[a],
+                                            -n[a] / n[pivot]);
+              }
+          }
+      }
+    constraints.close();
+
+    const MPI_Comm         comm = points.get_communicator();
+    DynamicSparsityPattern dsp(relevant_dofs);
+    DoFTools::make_sparsity_pattern(dof_handler, dsp, constraints, false);
+    SparsityTools::distribute_sparsity_pattern(dsp, owned_dofs, comm,
+                                               relevant_dofs);
+    tangent.reinit(owned_dofs, owned_dofs, dsp, comm);
+    residual.reinit(owned_dofs, comm);
+    correction.reinit(owned_dofs, comm);
+    displacement.reinit(owned_dofs, comm);
+    displacement_ghosted.reinit(owned_dofs, relevant_dofs, comm);
+  }
+} // namespace mpm
+
+namespace mpm
+{
+  template <int dim>
+  void
+  QuasiStaticIntegrator<dim>::assemble(const double load_factor,
+                                       const bool   with_tangent)
+  {
+    using Layout = PointLayout<dim>;
+    residual     = 0.;
+    correction   = 0.; // holds f_ext here, for the convergence measure
+    if (with_tangent)
+      tangent = 0.;
+    double internal_force_square = 0.;
+
+    const unsigned int dofs_per_cell = fe_collection[0].n_dofs_per_cell();
+    std::vector<types::global_dof_index> dofs(dofs_per_cell);
+    FullMatrix<double>                   cell_tangent(dofs_per_cell);
+    Vector<double> cell_residual(dofs_per_cell), cell_external(dofs_per_cell);
+    Vector<double> point_force;
+    FullMatrix<double>          point_tangent;
+    Support<dim>                support;
+    std::vector<Tensor<1, dim>> du(Support<dim>::max_nodes);
+    std::vector<double>         internal;
+
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        if (!cell->is_locally_owned() || cell->active_fe_index() != 0)
+          continue;
+        cell->get_dof_indices(dofs);
+        cell_tangent  = 0.;
+        cell_residual = 0.;
+        cell_external = 0.;
+        for (unsigned int i = 0; i < dofs_per_cell; ++i)
+          du[i / dim][i % dim] = displacement_ghosted(dofs[i]);
+
+        for (const auto &particle : points.handler().particles_in_cell(cell))
+          {
+            basis.evaluate(cell->active_cell_index(),
+                           particle.get_reference_location(),
+                           support);
+            const ArrayView<const double> p = particle.get_properties();
+            const Tensor<2, dim>          dF =
+              PointAssembly<dim>::deformation_increment(support, du);
+            const Tensor<2, dim> F_n = Layout::get_deformation_gradient(p);
+            StepKinematics       k;
+            k.F_old             = Layout::embed(F_n, 1.);
+            k.F_new             = Layout::embed(dF * F_n, 1.);
+            k.dt                = 1.;
+            k.velocity_gradient =
+              Layout::embed(dF, 1.) - Tensor<2, 3>(unit_symmetric_tensor<3>());
+            const Material &material =
+              *materials[static_cast<unsigned int>(p[Layout::material_id])];
+            SymmetricTensor<2, 3> stress = Layout::get_stress(p);
+            internal.assign(&p[Layout::internal_variables],
+                            &p[Layout::internal_variables] +
+                              material.n_internal_variables());
+            material.update_stress(k,
+                                   stress,
+                                   ArrayView<double>(internal.data(),
+                                                     internal.size()));
+            const SymmetricTensor<4, 3> c = material.spatial_tangent(
+              k,
+              stress,
+              ArrayView<const double>(internal.data(), internal.size()));
+            PointAssembly<dim>::internal_force(
+              support,
+              dF,
+              determinant(dF * F_n) * p[Layout::reference_volume],
+              stress,
+              &c,
+              point_force,
+              with_tangent ? &point_tangent : nullptr);
+
+            for (unsigned int i = 0; i < support.n_nodes; ++i)
+              for (unsigned int a = 0; a < dim; ++a)
+                {
+                  const double external =
+                    load_factor * support.N[i] *
+                    (p[Layout::point_load + a] + p[Layout::mass] * gravity[a]);
+                  cell_external(i * dim + a) += external;
+                  cell_residual(i * dim + a) +=
+                    external - point_force(i * dim + a);
+                }
+            if (with_tangent)
+              cell_tangent.add(1., point_tangent);
+          }
+
+        for (unsigned int i = 0; i < dofs_per_cell; ++i)
+          if (!constraints.is_constrained(dofs[i]))
+            internal_force_square +=
+              (cell_external(i) - cell_residual(i)) *
+              (cell_external(i) - cell_residual(i));
+        if (with_tangent)
+          constraints.distribute_local_to_global(
+            cell_tangent, cell_residual, dofs, tangent, residual);
+        else
+          constraints.distribute_local_to_global(cell_residual, dofs, residual);
+        constraints.distribute_local_to_global(cell_external, dofs, correction);
+      }
+    if (with_tangent)
+      tangent.compress(VectorOperation::add);
+    residual.compress(VectorOperation::add);
+    correction.compress(VectorOperation::add);
+
+    // The scale of the forces: the external load, or, where none acts
+    // (all reactions), the internal forces cell by cell.
+    external_force_norm = std::max(
+      correction.l2_norm(),
+      std::sqrt(Utilities::MPI::sum(internal_force_square,
+                                    points.get_communicator())));
+  }
+
+
+
+  template <int dim>
+  void
+  QuasiStaticIntegrator<dim>::solve_linear_system()
+  {
+    correction = 0.;
+    SolverControl control(1000, 1e-12 * residual.l2_norm(), false, false);
+    if (linear_solver == "direct")
+      {
+        TrilinosWrappers::SolverDirect solver(control);
+        solver.solve(tangent, correction, residual);
+      }
+    else
+      {
+        TrilinosWrappers::PreconditionAMG                 amg;
+        TrilinosWrappers::PreconditionAMG::AdditionalData data;
+        data.elliptic              = true;
+        data.higher_order_elements = false;
+        amg.initialize(tangent, data);
+        SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
+        cg.solve(tangent, correction, residual, amg);
+      }
+    constraints.distribute(correction);
+  }
+
+
+
+  template <int dim>
+  void
+  QuasiStaticIntegrator<dim>::step(const double load_factor)
+  {
+    {
+      TimerOutput::Scope t(timer, "setup system");
+      setup_system();
+    }
+    displacement = 0.;
+    displacement_ghosted = displacement;
+
+    bool converged = false;
+    for (unsigned int iteration = 0; iteration <= max_iterations; ++iteration)
+      {
+        {
+          TimerOutput::Scope t(timer, "assemble");
+          assemble(load_factor, iteration == 0 || !modified_newton);
+        }
+        const double ratio =
+          external_force_norm > 0. ? residual.l2_norm() / external_force_norm :
+                                     0.;
+        pcout << "    Newton " << std::setw(2) << iteration
+              << ": out-of-balance ratio " << std::scientific
+              << std::setprecision(3) << ratio << std::defaultfloat
+              << std::endl;
+        if (ratio < tolerance)
+          {
+            converged = true;
+            break;
+          }
+        if (iteration == max_iterations)
+          break;
+        {
+          TimerOutput::Scope t(timer, "linear solve");
+          solve_linear_system();
+        }
+        displacement += correction;
+        displacement_ghosted = displacement;
+      }
+    if (!converged)
+      {
+        std::ostringstream message;
+        message << "The load step to load factor " << load_factor
+                << " did not converge in " << max_iterations
+                << " Newton iterations.";
+        throw RunError(message.str());
+      }
+    TimerOutput::Scope t(timer, "G2P");
+    update_points();
+  }
+
+
+
+  template <int dim>
+  void
+  QuasiStaticIntegrator<dim>::update_points()
+  {
+    using Layout = PointLayout<dim>;
+    Support<dim>                         support;
+    std::vector<types::global_dof_index> dofs(fe_collection[0].n_dofs_per_cell());
+    std::vector<Tensor<1, dim>>          du(Support<dim>::max_nodes);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        if (!cell->is_locally_owned() || cell->active_fe_index() != 0)
+          continue;
+        cell->get_dof_indices(dofs);
+        for (unsigned int i = 0; i < dofs.size(); ++i)
+          du[i / dim][i % dim] = displacement_ghosted(dofs[i]);
+        for (auto &particle : points.handler().particles_in_cell(cell))
+          {
+            basis.evaluate(cell->active_cell_index(),
+                           particle.get_reference_location(),
+                           support);
+            const ArrayView<double> p = particle.get_properties();
+            const Tensor<2, dim>    dF =
+              PointAssembly<dim>::deformation_increment(support, du);
+            const Tensor<2, dim> F_n = Layout::get_deformation_gradient(p);
+            const Tensor<2, dim> F   = dF * F_n;
+            StepKinematics       k;
+            k.F_old = Layout::embed(F_n, 1.);
+            k.F_new = Layout::embed(F, 1.);
+            k.dt    = 1.;
+            k.velocity_gradient =
+              Layout::embed(dF, 1.) - Tensor<2, 3>(unit_symmetric_tensor<3>());
+            const Material &material =
+              *materials[static_cast<unsigned int>(p[Layout::material_id])];
+            SymmetricTensor<2, 3>       stress     = Layout::get_stress(p);
+            const SymmetricTensor<2, 3> stress_old = stress;
+            material.update_stress(
+              k,
+              stress,
+              ArrayView<double>(&p[Layout::internal_variables],
+                                material.n_internal_variables()));
+            // Stress work per reference volume over the step.
+            p[Layout::work_density] +=
+              0.5 *
+              (determinant(F_n) * stress_old + determinant(F) * stress) *
+              symmetrize(k.velocity_gradient);
+            Layout::set_deformation_gradient(p, F);
+            Layout::set_stress(p, stress);
+
+            Tensor<1, dim> displacement_at_point;
+            for (unsigned int i = 0; i < support.n_nodes; ++i)
+              displacement_at_point += support.N[i] * du[i];
+            particle.set_location(particle.get_location() +
+                                  displacement_at_point);
+          }
+      }
+  }
+
+
+
+  template class QuasiStaticIntegrator<2>;
+  template class QuasiStaticIntegrator<3>;
+} // namespace mpm

@@ -1,0 +1,92 @@
+// Quasi-static MPM on the oedometer of prm/oedometer.prm (neo-Hookean,
+// nu = 0, rollers, fixed base, load on the top row of points):
+// - the first load step, before any point crosses a cell, is homogeneous
+//   below the loaded cell and matches the closed form of the law,
+//   sigma = E sinh(eps_L) (benchmarks.md section 4), to 1e-8;
+// - full Newton converges quadratically: once the out-of-balance ratio is
+//   below 1e-2, each ratio is below 10 times the square of the one before
+//   (asserted from the printed iterations), in every load step;
+// - on one and two ranks alike.
+
+#include <deal.II/base/mpi.h>
+
+#include <mpm/core/application.h>
+
+#include <cmath>
+#include <iostream>
+#include <sstream>
+
+#include "tests.h"
+
+using namespace dealii;
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  mpm_tests::initlog();
+  const std::string scene = mpm_tests::source_file("../prm/oedometer.prm");
+  const double      E = 1e6, width = 0.1, full_force = -52109.53;
+
+  // First load step only: 10 % of the load.
+  {
+    const int code = mpm::run_command_line(
+      {"--set", "Output/Directory=first-step", "--set",
+       "Output/Write ParaView output=false", "--set",
+       "Time stepping/End time=0.1", "--set", "Time stepping/Load steps=1",
+       "--set", "Loads/Total force=0, " + std::to_string(0.1 * full_force),
+       scene});
+    deallog << "first step: exit code " << code << std::endl;
+    MPI_Barrier(MPI_COMM_WORLD);
+    auto csv = mpm_tests::read_csv("first-step/time_series.csv");
+    const double eps_L =
+      std::log((csv["point1_y"][1] - csv["point0_y"][1]) /
+               (csv["point1_y"][0] - csv["point0_y"][0]));
+    const double sigma = 0.1 * full_force / width;
+    mpm_tests::check("first step: E sinh(eps_L) = applied stress to 1e-8",
+                     std::abs(E * std::sinh(eps_L) - sigma) <
+                       1e-8 * std::abs(sigma));
+  }
+
+  // Five load steps to eps_L = -0.26, Newton's ratios from the log.
+  {
+    std::ostringstream log;
+    std::streambuf *   old  = std::cout.rdbuf(log.rdbuf());
+    const int          code = mpm::run_command_line(
+      {"--set", "Output/Directory=newton", "--set",
+       "Output/Write ParaView output=false", "--set",
+       "Time stepping/End time=0.5", "--set", "Time stepping/Load steps=5",
+       "--set", "Loads/Total force=0, " + std::to_string(0.5 * full_force),
+       scene});
+    std::cout.rdbuf(old);
+    deallog << "five steps: exit code " << code << std::endl;
+
+    if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+      {
+        std::istringstream lines(log.str());
+        std::vector<std::vector<double>> steps;
+        for (std::string line; std::getline(lines, line);)
+          if (line.find("load step") != std::string::npos)
+            steps.emplace_back();
+          else if (line.find("out-of-balance ratio") != std::string::npos)
+            steps.back().push_back(
+              std::stod(line.substr(line.rfind(' ') + 1)));
+        bool         quadratic = true;
+        unsigned int checked   = 0;
+        for (const auto &ratios : steps)
+          for (unsigned int k = 0; k + 1 < ratios.size(); ++k)
+            if (ratios[k] < 1e-2 && ratios[k + 1] > 1e-14)
+              {
+                ++checked;
+                quadratic =
+                  quadratic && ratios[k + 1] < 10. * ratios[k] * ratios[k];
+              }
+        deallog << "load steps: " << steps.size() << std::endl;
+        mpm_tests::check("Newton converges quadratically (" +
+                           std::string(checked >= 5 ? "at least 5" :
+                                                      "fewer than 5") +
+                           " iterations checked)",
+                         quadratic && checked >= 5);
+      }
+  }
+}
