@@ -35,6 +35,15 @@ namespace mpm
                       "full: a new tangent every iteration (quadratic "
                       "convergence). modified: the tangent of the step's "
                       "first iteration throughout, as in Beuth et al.");
+    prm.declare_entry(
+      "Integration", "full cells by cell volume",
+      Patterns::Selection("material points|full cells by cell volume"),
+      "Quadrature of the internal force. 'material points': each point "
+      "weighs its own volume. 'full cells by cell volume': in cells whose "
+      "face neighbours all hold material, the point volumes are scaled to "
+      "fill the cell, so a uniform stress is in equilibrium however points "
+      "have crossed cells (after Beuth et al., who use Gauss points in full "
+      "cells); cells on the material's surface keep point volumes.");
     prm.declare_entry("Linear solver", "direct",
                       Patterns::Selection("direct|CG-AMG"),
                       "direct: sparse LU (Trilinos Amesos), for small "
@@ -69,6 +78,7 @@ namespace mpm
     max_iterations  = prm.get_integer("Maximum iterations");
     modified_newton = prm.get("Variant") == "modified";
     linear_solver   = prm.get("Linear solver");
+    scale_full_cells = prm.get("Integration") == "full cells by cell volume";
     prm.leave_subsection();
     if (!(tolerance > 0.))
       throw InputError("Newton/Tolerance must be positive.");
@@ -191,6 +201,7 @@ namespace mpm
         cell_tangent  = 0.;
         cell_residual = 0.;
         cell_external = 0.;
+        const double weight = quadrature_scale(cell);
         for (unsigned int i = 0; i < dofs_per_cell; ++i)
           du[i / dim][i % dim] = displacement_ghosted(dofs[i]);
 
@@ -226,7 +237,7 @@ namespace mpm
             PointAssembly<dim>::internal_force(
               support,
               dF,
-              determinant(dF * F_n) * p[Layout::reference_volume],
+              weight * determinant(dF * F_n) * p[Layout::reference_volume],
               stress,
               &c,
               point_force,
@@ -269,6 +280,30 @@ namespace mpm
       correction.l2_norm(),
       std::sqrt(Utilities::MPI::sum(internal_force_square,
                                     points.get_communicator())));
+  }
+
+
+
+  template <int dim>
+  double
+  QuasiStaticIntegrator<dim>::quadrature_scale(
+    const typename DoFHandler<dim>::active_cell_iterator &cell) const
+  {
+    if (!scale_full_cells)
+      return 1.;
+    // Neighbours (owned or ghost) that hold points carry FE_Q.
+    for (const unsigned int f : cell->face_indices())
+      if (!cell->at_boundary(f) && cell->neighbor(f)->active_fe_index() != 0)
+        return 1.;
+    using Layout  = PointLayout<dim>;
+    double volume = 0.;
+    for (const auto &particle : points.handler().particles_in_cell(cell))
+      {
+        const ArrayView<const double> p = particle.get_properties();
+        volume += determinant(Layout::get_deformation_gradient(p)) *
+                  p[Layout::reference_volume];
+      }
+    return cell->measure() / volume;
   }
 
 

@@ -63,6 +63,14 @@ namespace mpm
     void
     assemble(const double load_factor, const bool with_tangent);
 
+    /**
+     * Factor on the point volumes of a cell in the quadrature of the
+     * internal force (see the Integration parameter).
+     */
+    double
+    quadrature_scale(
+      const typename DoFHandler<dim>::active_cell_iterator &cell) const;
+
     void
     solve_linear_system();
 
@@ -82,6 +90,7 @@ namespace mpm
     unsigned int max_iterations;
     bool         modified_newton;
     std::string  linear_solver;
+    bool         scale_full_cells;
 
     hp::FECollection<dim>              fe_collection;
     DoFHandler<dim>                    dof_handler;
