@@ -1,5 +1,7 @@
 #include <deal.II/base/exceptions.h>
 
+#include <deal.II/base/quadrature_lib.h>
+
 #include <mpm/bodies/body.h>
 #include <mpm/core/input_error.h>
 #include <mpm/core/parse.h>
@@ -39,6 +41,13 @@ namespace mpm
                       "placed at the centres of a regular n x n (x n) "
                       "subdivision of each cell. A point belongs to the first "
                       "body, in the order of Bodies/Names, that contains it.");
+    prm.declare_entry("Point placement", "centres",
+                      Patterns::Selection("centres|Gauss"),
+                      "centres: points at the centres of a regular n x n "
+                      "(x n) subdivision of each cell, with equal volumes. "
+                      "Gauss: points at the n x n (x n) Gauss points, with "
+                      "the Gauss weights (the material points of a FE "
+                      "solution with the same quadrature).");
     prm.declare_entry("Initial velocity", "0; 0; 0", Patterns::Anything(),
                       "Initial velocity as a function of position x, y (, z) "
                       "and the constant pi: one expression per component, "
@@ -55,8 +64,12 @@ namespace mpm
                   const std::string &             section_path,
                   const std::vector<std::string> &material_names)
     : body_name(name)
-    , n_points_per_direction(prm.get_integer("Points per cell direction"))
   {
+    const unsigned int n = prm.get_integer("Points per cell direction");
+    if (prm.get("Point placement") == "Gauss")
+      placement = QGauss<dim>(n);
+    else
+      placement = QIterated<dim>(QMidpoint<1>(), n);
     const std::string shape_name = prm.get("Shape");
     if (shape_name == "box")
       {

@@ -85,20 +85,11 @@ namespace mpm
           continue;
         for (unsigned int b = 0; b < bodies.size(); ++b)
           {
-            const unsigned int n = bodies[b].points_per_cell_direction();
-            unsigned int       n_sub = 1;
-            for (unsigned int d = 0; d < dim; ++d)
-              n_sub *= n;
-            for (unsigned int k = 0; k < n_sub; ++k)
+            const Quadrature<dim> &placement = bodies[b].point_placement();
+            for (unsigned int k = 0; k < placement.size(); ++k)
               {
-                Point<dim>   reference;
-                unsigned int rest = k;
-                for (unsigned int d = 0; d < dim; ++d)
-                  {
-                    reference[d] = ((rest % n) + 0.5) / n;
-                    rest /= n;
-                  }
-                const Point<dim> x =
+                const Point<dim> &reference = placement.point(k);
+                const Point<dim>  x =
                   mapping.transform_unit_to_real_cell(cell, reference);
                 if (!bodies[b].contains(x))
                   continue;
@@ -109,8 +100,8 @@ namespace mpm
                 if (owned_by_earlier_body)
                   continue;
                 const double volume =
-                  basis.volume_factor(cell->active_cell_index(), reference) /
-                  n_sub;
+                  basis.volume_factor(cell->active_cell_index(), reference) *
+                  placement.weight(k);
                 candidates.push_back({x, reference, cell, volume, b});
               }
           }

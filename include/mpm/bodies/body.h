@@ -4,6 +4,7 @@
 #include <deal.II/base/function_parser.h>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/point.h>
+#include <deal.II/base/quadrature.h>
 
 #include <memory>
 #include <string>
@@ -49,10 +50,15 @@ namespace mpm
       return material;
     }
 
-    unsigned int
-    points_per_cell_direction() const
+    /**
+     * Where the points of a cell go on the reference cell, and the share of
+     * the cell's volume each stands for: centres of an n^dim subdivision,
+     * or the n^dim Gauss points.
+     */
+    const Quadrature<dim> &
+    point_placement() const
     {
-      return n_points_per_direction;
+      return placement;
     }
 
   private:
@@ -71,7 +77,7 @@ namespace mpm
     double                  radius = 0.;
     std::vector<Point<dim>> polygon;
     unsigned int            material = 0;
-    unsigned int            n_points_per_direction;
+    Quadrature<dim>         placement;
     std::unique_ptr<FunctionParser<dim>> velocity;
   };
 } // namespace mpm

@@ -34,10 +34,9 @@ namespace mpm
 
     /**
      * Fill every locally owned cell with the points of the bodies that
-     * contain them: n^dim points per cell at the centres of a regular
-     * subdivision of the reference cell, each with the volume of its
-     * sub-cell by the midpoint rule (exact for bilinear cells). Ids are
-     * unique across ranks.
+     * contain them, at the positions of the body's point placement (a
+     * quadrature on the reference cell), each with volume det J times its
+     * weight (exact for bilinear cells). Ids are unique across ranks.
      */
     void
     seed(const std::vector<Body<dim>> &                bodies,

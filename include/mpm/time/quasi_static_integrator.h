@@ -89,6 +89,7 @@ namespace mpm
     double       tolerance;
     unsigned int max_iterations;
     bool         modified_newton;
+    bool         linear_only;
     std::string  linear_solver;
     bool         scale_full_cells;
 
