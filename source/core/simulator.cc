@@ -34,7 +34,7 @@ namespace mpm
     BackgroundGrid<dim>::declare_parameters(prm);
     DirichletConditions<dim>::declare_parameters(prm);
     PointLoads<dim>::declare_parameters(prm);
-    QuasiStaticIntegrator<dim>::declare_parameters(prm);
+    ImplicitIntegrator<dim>::declare_parameters(prm);
 
     prm.enter_subsection("Time stepping");
     prm.declare_entry("End time", "1", Patterns::Double(0.),
@@ -49,12 +49,13 @@ namespace mpm
                       "Fraction of the stability limit used by the automatic "
                       "time step, 0 < CFL <= 1.");
     prm.declare_entry("Scheme", "explicit",
-                      Patterns::Selection("explicit|quasi-static"),
+                      Patterns::Selection("explicit|quasi-static|Newmark"),
                       "explicit: dynamic explicit MPM with the Update "
                       "scheme below. quasi-static: equilibrium in Load steps "
                       "over the pseudo-time End time, loads and gravity "
                       "ramped with t / End time, solved by Newton (see "
-                      "Newton).");
+                      "Newton). Newmark: implicit dynamic MPM with the fixed "
+                      "Time step, solved by Newton (see Newton, Newmark).");
     prm.declare_entry("Load steps", "10", Patterns::Integer(1),
                       "Quasi-static: number of equal load steps.");
     prm.declare_entry("Update scheme", "MUSL",
@@ -132,7 +133,7 @@ namespace mpm
     fixed_time_step = prm.get_double("Time step");
     cfl_number      = prm.get_double("CFL number");
     n_load_steps    = prm.get_integer("Load steps");
-    const bool use_quasi_static = prm.get("Scheme") == "quasi-static";
+    const std::string scheme_name = prm.get("Scheme");
     const typename ExplicitIntegrator<dim>::Scheme scheme =
       ExplicitIntegrator<dim>::parse_scheme(prm.get("Update scheme"));
     prm.leave_subsection();
@@ -199,9 +200,21 @@ namespace mpm
       *points, basis, nodes, *dirichlet, gravity);
     integrator = std::make_unique<ExplicitIntegrator<dim>>(
       *transfer, materials, scheme, basis.minimum_cell_size(), timer);
-    if (use_quasi_static)
-      quasi_static = std::make_unique<QuasiStaticIntegrator<dim>>(
-        prm, *points, basis, *dirichlet, materials, gravity, pcout, timer);
+    if (scheme_name != "explicit")
+      implicit = std::make_unique<ImplicitIntegrator<dim>>(scheme_name ==
+                                                             "Newmark",
+                                                           prm,
+                                                           *points,
+                                                           basis,
+                                                           *dirichlet,
+                                                           materials,
+                                                           gravity,
+                                                           pcout,
+                                                           timer);
+    dynamic_implicit = scheme_name == "Newmark";
+    if (dynamic_implicit && !(fixed_time_step > 0.))
+      throw InputError("Time stepping/Scheme = Newmark needs a Time step "
+                       "above 0.");
 
     std::error_code error;
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
@@ -217,7 +230,7 @@ namespace mpm
       *points);
 
     // A fixed time step must be stable for the initial state.
-    if (fixed_time_step > 0. && !quasi_static)
+    if (fixed_time_step > 0. && !implicit)
       {
         double max_speed = 0.;
         for (const auto &particle : points->handler())
@@ -349,16 +362,25 @@ namespace mpm
 
   template <int dim>
   void
-  Simulator<dim>::load_step()
+  Simulator<dim>::implicit_step()
   {
     const unsigned int max_cuts = 4;
     for (unsigned int cut = 0;; ++cut)
       {
         try
           {
-            pcout << "  load step " << step + 1 << ": load factor "
-                  << (time + dt) / end_time << std::endl;
-            quasi_static->step((time + dt) / end_time);
+            if (dynamic_implicit)
+              {
+                pcout << "  time step " << step + 1 << ": t = " << time + dt
+                      << std::endl;
+                implicit->step(1., dt);
+              }
+            else
+              {
+                pcout << "  load step " << step + 1 << ": load factor "
+                      << (time + dt) / end_time << std::endl;
+                implicit->step((time + dt) / end_time, dt);
+              }
             return;
           }
         catch (const RunError &e)
@@ -393,6 +415,22 @@ namespace mpm
         max_speed, PointLayout<dim>::get_velocity(particle.get_properties()).norm());
     max_speed = Utilities::MPI::max(max_speed, communicator);
 
+    if (dynamic_implicit)
+      {
+        // Newmark needs the initial acceleration: M a = f_ext - f_int with
+        // the lumped mass, from the same projection the explicit scheme
+        // uses.
+        transfer->project_mass_momentum(true);
+        transfer->compute_nodal_acceleration(0., false);
+        transfer->for_each_point(
+          [&](auto &particle, const Support<dim> &support) {
+            const Tensor<1, dim> a = transfer->interpolate(
+              support, GridNodes<dim>::NodalLayout::force);
+            for (unsigned int d = 0; d < dim; ++d)
+              particle->get_properties()[PointLayout<dim>::acceleration + d] =
+                a[d];
+          });
+      }
     {
       TimerOutput::Scope t(timer, "output");
       // The nodal values are written as they were last projected; project
@@ -409,10 +447,12 @@ namespace mpm
     const double time_tolerance = 1e-12 * end_time;
     while (time < end_time - time_tolerance)
       {
-        if (quasi_static)
+        if (implicit)
           {
-            dt = std::min(end_time / n_load_steps, end_time - time);
-            load_step();
+            dt = std::min(dynamic_implicit ? fixed_time_step :
+                                             end_time / n_load_steps,
+                          end_time - time);
+            implicit_step();
           }
         else
           {
@@ -444,10 +484,10 @@ namespace mpm
              at_end))
           {
             TimerOutput::Scope t(timer, "output");
-            if (quasi_static)
+            if (implicit)
               {
-                // The quasi-static scheme does not use the nodal vector;
-                // project for the grid output.
+                // The implicit schemes do not use the nodal vector; project
+                // for the grid output.
                 transfer->project_mass_momentum(false);
                 transfer->compute_nodal_velocity();
               }

@@ -61,6 +61,8 @@ namespace mpm
         {
           interpretation[Layout::velocity + d] =
             DataComponentInterpretation::component_is_part_of_vector;
+          interpretation[Layout::acceleration + d] =
+            DataComponentInterpretation::component_is_part_of_vector;
           interpretation[Layout::point_load + d] =
             DataComponentInterpretation::component_is_part_of_vector;
         }

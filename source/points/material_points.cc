@@ -18,8 +18,9 @@ namespace mpm
     n[reference_volume] = "reference_volume";
     for (unsigned int d = 0; d < dim; ++d)
       {
-        n[velocity + d]   = "velocity";
-        n[point_load + d] = "point_load";
+        n[velocity + d]     = "velocity";
+        n[acceleration + d] = "acceleration";
+        n[point_load + d]   = "point_load";
       }
     const char *axes = "xyz";
     for (unsigned int i = 0; i < dim; ++i)

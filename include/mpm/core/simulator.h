@@ -18,7 +18,7 @@
 #include <mpm/output/vtu_output.h>
 #include <mpm/points/material_points.h>
 #include <mpm/time/explicit_integrator.h>
-#include <mpm/time/quasi_static_integrator.h>
+#include <mpm/time/implicit_integrator.h>
 
 #include <memory>
 #include <string>
@@ -85,11 +85,11 @@ namespace mpm
     explicit_step();
 
     /**
-     * One quasi-static load step of size dt, cut in half (up to 4 times) if
-     * Newton does not converge.
+     * One implicit step of size dt (a load step, or a Newmark time step),
+     * cut in half (up to 4 times) if Newton does not converge.
      */
     void
-    load_step();
+    implicit_step();
 
     const MPI_Comm     communicator;
     ConditionalOStream pcout;
@@ -106,7 +106,8 @@ namespace mpm
     std::unique_ptr<MaterialPoints<dim>>      points;
     std::unique_ptr<GridTransfer<dim>>        transfer;
     std::unique_ptr<ExplicitIntegrator<dim>>  integrator;
-    std::unique_ptr<QuasiStaticIntegrator<dim>> quasi_static;
+    std::unique_ptr<ImplicitIntegrator<dim>>  implicit;
+    bool                                      dynamic_implicit = false;
     std::unique_ptr<VtuOutput<dim>>           vtu_output;
     std::unique_ptr<TimeSeries<dim>>          time_series;
 

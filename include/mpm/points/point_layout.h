@@ -27,8 +27,10 @@ namespace mpm
     static constexpr unsigned int mass                 = 0;
     static constexpr unsigned int reference_volume     = 1;
     static constexpr unsigned int velocity             = 2;
+    /** Acceleration (implicit dynamics). */
+    static constexpr unsigned int acceleration         = velocity + dim;
     /** Force applied to the point at full load (quasi-static loads). */
-    static constexpr unsigned int point_load           = velocity + dim;
+    static constexpr unsigned int point_load           = acceleration + dim;
     static constexpr unsigned int deformation_gradient = point_load + dim;
     static constexpr unsigned int stress = deformation_gradient + dim * dim;
     static constexpr unsigned int work_density       = stress + 6;

@@ -12,7 +12,7 @@
 
 #include <mpm/assembly/point_assembly.h>
 #include <mpm/core/input_error.h>
-#include <mpm/time/quasi_static_integrator.h>
+#include <mpm/time/implicit_integrator.h>
 
 #include <iomanip>
 #include <sstream>
@@ -21,7 +21,7 @@ namespace mpm
 {
   template <int dim>
   void
-  QuasiStaticIntegrator<dim>::declare_parameters(ParameterHandler &prm)
+  ImplicitIntegrator<dim>::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Newton");
     prm.declare_entry("Tolerance", "1e-8", Patterns::Double(0.),
@@ -54,12 +54,21 @@ namespace mpm
                       "problems. CG-AMG: conjugate gradients with Trilinos ML "
                       "algebraic multigrid, for large ones.");
     prm.leave_subsection();
+
+    prm.enter_subsection("Newmark");
+    prm.declare_entry("Beta", "0.25", Patterns::Double(0., 0.5),
+                      "Newmark beta; 0.25 with gamma 0.5 is the trapezoidal "
+                      "rule (no numerical damping).");
+    prm.declare_entry("Gamma", "0.5", Patterns::Double(0., 1.),
+                      "Newmark gamma.");
+    prm.leave_subsection();
   }
 
 
 
   template <int dim>
-  QuasiStaticIntegrator<dim>::QuasiStaticIntegrator(
+  ImplicitIntegrator<dim>::ImplicitIntegrator(
+    const bool                                    dynamic,
     ParameterHandler &                            prm,
     MaterialPoints<dim> &                         points,
     const GridBasis<dim> &                        basis,
@@ -75,6 +84,7 @@ namespace mpm
     , gravity(gravity)
     , pcout(pcout)
     , timer(timer)
+    , dynamic(dynamic)
     , dof_handler(points.get_triangulation())
   {
     prm.enter_subsection("Newton");
@@ -87,6 +97,13 @@ namespace mpm
     prm.leave_subsection();
     if (!(tolerance > 0.))
       throw InputError("Newton/Tolerance must be positive.");
+    prm.enter_subsection("Newmark");
+    beta  = prm.get_double("Beta");
+    gamma = prm.get_double("Gamma");
+    prm.leave_subsection();
+    if (dynamic && !(beta > 0.))
+      throw InputError("Newmark/Beta must be positive for the implicit "
+                       "scheme.");
 
     fe_collection.push_back(FESystem<dim>(FE_Q<dim>(1), dim));
     fe_collection.push_back(FESystem<dim>(FE_Nothing<dim>(), dim));
@@ -96,7 +113,7 @@ namespace mpm
 
   template <int dim>
   void
-  QuasiStaticIntegrator<dim>::setup_system()
+  ImplicitIntegrator<dim>::setup_system()
   {
     // Unknowns only on cells that hold points.
     for (const auto &cell : dof_handler.active_cell_iterators())
@@ -171,6 +188,68 @@ namespace mpm
     correction.reinit(owned_dofs, comm);
     displacement.reinit(owned_dofs, comm);
     displacement_ghosted.reinit(owned_dofs, relevant_dofs, comm);
+    velocity_ghosted.reinit(owned_dofs, relevant_dofs, comm);
+    acceleration_ghosted.reinit(owned_dofs, relevant_dofs, comm);
+  }
+
+
+
+  template <int dim>
+  void
+  ImplicitIntegrator<dim>::project_initial_conditions()
+  {
+    using Layout      = PointLayout<dim>;
+    const MPI_Comm comm = points.get_communicator();
+    // Writable ghost entries, summed into their owners by compress().
+    TrilinosWrappers::MPI::Vector mass, momentum, mass_acceleration;
+    mass.reinit(owned_dofs, relevant_dofs, comm, true);
+    momentum.reinit(owned_dofs, relevant_dofs, comm, true);
+    mass_acceleration.reinit(owned_dofs, relevant_dofs, comm, true);
+
+    const unsigned int dofs_per_cell = fe_collection[0].n_dofs_per_cell();
+    std::vector<types::global_dof_index> dofs(dofs_per_cell);
+    Support<dim>                         support;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        if (!cell->is_locally_owned() || cell->active_fe_index() != 0)
+          continue;
+        cell->get_dof_indices(dofs);
+        for (const auto &particle : points.handler().particles_in_cell(cell))
+          {
+            basis.evaluate(cell->active_cell_index(),
+                           particle.get_reference_location(),
+                           support);
+            const ArrayView<const double> p = particle.get_properties();
+            for (unsigned int i = 0; i < support.n_nodes; ++i)
+              for (unsigned int a = 0; a < dim; ++a)
+                {
+                  const double Nm = support.N[i] * p[Layout::mass];
+                  mass(dofs[i * dim + a]) += Nm;
+                  momentum(dofs[i * dim + a]) += Nm * p[Layout::velocity + a];
+                  mass_acceleration(dofs[i * dim + a]) +=
+                    Nm * p[Layout::acceleration + a];
+                }
+          }
+      }
+    mass.compress(VectorOperation::add);
+    momentum.compress(VectorOperation::add);
+    mass_acceleration.compress(VectorOperation::add);
+
+    TrilinosWrappers::MPI::Vector velocity(owned_dofs, comm),
+      acceleration(owned_dofs, comm);
+    for (const auto i : owned_dofs)
+      if (mass(i) > 0.)
+        {
+          velocity(i)     = momentum(i) / mass(i);
+          acceleration(i) = mass_acceleration(i) / mass(i);
+        }
+    velocity.compress(VectorOperation::insert);
+    acceleration.compress(VectorOperation::insert);
+    // Grid conditions hold for the nodal velocity and acceleration too.
+    constraints.distribute(velocity);
+    constraints.distribute(acceleration);
+    velocity_ghosted     = velocity;
+    acceleration_ghosted = acceleration;
   }
 } // namespace mpm
 
@@ -178,7 +257,7 @@ namespace mpm
 {
   template <int dim>
   void
-  QuasiStaticIntegrator<dim>::assemble(const double load_factor,
+  ImplicitIntegrator<dim>::assemble(const double load_factor,
                                        const bool   with_tangent)
   {
     using Layout = PointLayout<dim>;
@@ -196,7 +275,11 @@ namespace mpm
     FullMatrix<double>          point_tangent;
     Support<dim>                support;
     std::vector<Tensor<1, dim>> du(Support<dim>::max_nodes);
+    std::vector<Tensor<1, dim>> v_n(Support<dim>::max_nodes);
+    std::vector<Tensor<1, dim>> a_n(Support<dim>::max_nodes);
     std::vector<double>         internal;
+    const double                mass_stiffness =
+      dynamic ? 1. / (beta * time_step * time_step) : 0.;
 
     for (const auto &cell : dof_handler.active_cell_iterators())
       {
@@ -209,6 +292,12 @@ namespace mpm
         const double weight = quadrature_scale(cell);
         for (unsigned int i = 0; i < dofs_per_cell; ++i)
           du[i / dim][i % dim] = displacement_ghosted(dofs[i]);
+        if (dynamic)
+          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+            {
+              v_n[i / dim][i % dim] = velocity_ghosted(dofs[i]);
+              a_n[i / dim][i % dim] = acceleration_ghosted(dofs[i]);
+            }
 
         for (const auto &particle : points.handler().particles_in_cell(cell))
           {
@@ -260,6 +349,26 @@ namespace mpm
                 }
             if (with_tangent)
               cell_tangent.add(1., point_tangent);
+
+            if (dynamic)
+              {
+                // Inertia m_p a(x_p) with the Newmark nodal acceleration,
+                // and its derivative, the consistent point mass.
+                Tensor<1, dim> a_point;
+                for (unsigned int k = 0; k < support.n_nodes; ++k)
+                  a_point += support.N[k] * end_acceleration(du[k], v_n[k], a_n[k]);
+                const double m = p[Layout::mass];
+                for (unsigned int i = 0; i < support.n_nodes; ++i)
+                  {
+                    for (unsigned int a = 0; a < dim; ++a)
+                      cell_residual(i * dim + a) -= support.N[i] * m * a_point[a];
+                    if (with_tangent)
+                      for (unsigned int k = 0; k < support.n_nodes; ++k)
+                        for (unsigned int a = 0; a < dim; ++a)
+                          cell_tangent(i * dim + a, k * dim + a) +=
+                            support.N[i] * support.N[k] * m * mass_stiffness;
+                  }
+              }
           }
 
         for (unsigned int i = 0; i < dofs_per_cell; ++i)
@@ -292,7 +401,7 @@ namespace mpm
 
   template <int dim>
   double
-  QuasiStaticIntegrator<dim>::quadrature_scale(
+  ImplicitIntegrator<dim>::quadrature_scale(
     const typename DoFHandler<dim>::active_cell_iterator &cell) const
   {
     if (!scale_full_cells)
@@ -316,7 +425,7 @@ namespace mpm
 
   template <int dim>
   void
-  QuasiStaticIntegrator<dim>::solve_linear_system()
+  ImplicitIntegrator<dim>::solve_linear_system()
   {
     correction = 0.;
     SolverControl control(1000, 1e-12 * residual.l2_norm(), false, false);
@@ -342,11 +451,14 @@ namespace mpm
 
   template <int dim>
   void
-  QuasiStaticIntegrator<dim>::step(const double load_factor)
+  ImplicitIntegrator<dim>::step(const double load_factor, const double dt)
   {
+    time_step = dt;
     {
       TimerOutput::Scope t(timer, "setup system");
       setup_system();
+      if (dynamic)
+        project_initial_conditions();
     }
     displacement = 0.;
     displacement_ghosted = displacement;
@@ -382,8 +494,11 @@ namespace mpm
     if (!converged)
       {
         std::ostringstream message;
-        message << "The load step to load factor " << load_factor
-                << " did not converge in " << max_iterations
+        if (dynamic)
+          message << "The time step of size " << dt;
+        else
+          message << "The load step to load factor " << load_factor;
+        message << " did not converge in " << max_iterations
                 << " Newton iterations.";
         throw RunError(message.str());
       }
@@ -395,19 +510,28 @@ namespace mpm
 
   template <int dim>
   void
-  QuasiStaticIntegrator<dim>::update_points()
+  ImplicitIntegrator<dim>::update_points()
   {
     using Layout = PointLayout<dim>;
     Support<dim>                         support;
     std::vector<types::global_dof_index> dofs(fe_collection[0].n_dofs_per_cell());
     std::vector<Tensor<1, dim>>          du(Support<dim>::max_nodes);
+    std::vector<Tensor<1, dim>>          v_n(Support<dim>::max_nodes);
+    std::vector<Tensor<1, dim>>          a_n(Support<dim>::max_nodes);
     for (const auto &cell : dof_handler.active_cell_iterators())
       {
         if (!cell->is_locally_owned() || cell->active_fe_index() != 0)
           continue;
         cell->get_dof_indices(dofs);
         for (unsigned int i = 0; i < dofs.size(); ++i)
-          du[i / dim][i % dim] = displacement_ghosted(dofs[i]);
+          {
+            du[i / dim][i % dim] = displacement_ghosted(dofs[i]);
+            if (dynamic)
+              {
+                v_n[i / dim][i % dim] = velocity_ghosted(dofs[i]);
+                a_n[i / dim][i % dim] = acceleration_ghosted(dofs[i]);
+              }
+          }
         for (auto &particle : points.handler().particles_in_cell(cell))
           {
             basis.evaluate(cell->active_cell_index(),
@@ -444,6 +568,24 @@ namespace mpm
             Tensor<1, dim> displacement_at_point;
             for (unsigned int i = 0; i < support.n_nodes; ++i)
               displacement_at_point += support.N[i] * du[i];
+            if (dynamic)
+              {
+                // [I] eqs. 46-49: the points take the nodal acceleration at
+                // the end of the step, and the Newmark velocity update.
+                Tensor<1, dim> a_old, a_new;
+                for (unsigned int i = 0; i < support.n_nodes; ++i)
+                  {
+                    a_old += support.N[i] * a_n[i];
+                    a_new +=
+                      support.N[i] * end_acceleration(du[i], v_n[i], a_n[i]);
+                  }
+                for (unsigned int d = 0; d < dim; ++d)
+                  {
+                    p[Layout::velocity + d] +=
+                      time_step * ((1. - gamma) * a_old[d] + gamma * a_new[d]);
+                    p[Layout::acceleration + d] = a_new[d];
+                  }
+              }
             particle.set_location(particle.get_location() +
                                   displacement_at_point);
           }
@@ -452,6 +594,6 @@ namespace mpm
 
 
 
-  template class QuasiStaticIntegrator<2>;
-  template class QuasiStaticIntegrator<3>;
+  template class ImplicitIntegrator<2>;
+  template class ImplicitIntegrator<3>;
 } // namespace mpm

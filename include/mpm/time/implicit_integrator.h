@@ -1,5 +1,5 @@
-#ifndef mpm_time_quasi_static_integrator_h
-#define mpm_time_quasi_static_integrator_h
+#ifndef mpm_time_implicit_integrator.h
+#define mpm_time_implicit_integrator.h
 
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/parameter_handler.h>
@@ -23,23 +23,31 @@ namespace mpm
   using namespace dealii;
 
   /**
-   * Quasi-static MPM (Beuth et al. section 3): the load is applied in steps
-   * of a pseudo-time; each step solves equilibrium of the points' internal
-   * forces with gravity and point loads, scaled by the load factor t / T,
-   * by Newton-Raphson on the nodal displacement increment, with the tangent
-   * of PointAssembly on Trilinos. Only cells that hold points carry unknowns
-   * (FE_Nothing elsewhere), so the matrix stays regular and its size follows
-   * the material. After convergence the points take the step's deformation
-   * and displacement, and the grid is reset.
+   * Implicit MPM: each step solves for the nodal displacement increment by
+   * Newton-Raphson, with the internal force and tangent of PointAssembly on
+   * Trilinos. Only cells that hold points carry unknowns (FE_Nothing
+   * elsewhere), so the matrix stays regular and its size follows the
+   * material. After convergence the points take the step's deformation and
+   * displacement, and the grid is reset.
+   *
+   * - Quasi-static (Beuth et al. section 3): equilibrium with gravity and
+   *   point loads scaled by a load factor.
+   * - Newmark (Iaconeta et al. 2017, Algorithm 1): nodal velocity and
+   *   acceleration projected from the points, inertia m_p a(x_p) at the
+   *   points with the Newmark update of the nodal acceleration, the
+   *   consistent point mass m_p N_i N_k / (beta dt^2) in the tangent, and the
+   *   points' velocity and acceleration updated from the nodes ([I] eqs.
+   *   46-49).
    */
   template <int dim>
-  class QuasiStaticIntegrator
+  class ImplicitIntegrator
   {
   public:
     static void
     declare_parameters(ParameterHandler &prm);
 
-    QuasiStaticIntegrator(ParameterHandler &                            prm,
+    ImplicitIntegrator(const bool                                    dynamic,
+                       ParameterHandler &                            prm,
                           MaterialPoints<dim> &                         points,
                           const GridBasis<dim> &                        basis,
                           const DirichletConditions<dim> &              dirichlet,
@@ -49,15 +57,35 @@ namespace mpm
                           TimerOutput &                                 timer);
 
     /**
-     * Solve the load step that ends at load factor `load_factor` and move
-     * the points. A step that does not converge throws RunError.
+     * Solve one step and move the points. `load_factor` scales gravity and
+     * point loads (1 in dynamic runs); dt is the time step (dynamic runs
+     * only). A step that does not converge throws RunError and leaves the
+     * points as they were.
      */
     void
-    step(const double load_factor);
+    step(const double load_factor, const double dt);
 
   private:
     void
     setup_system();
+
+    /** Nodal velocity and acceleration from the points (dynamic runs). */
+    void
+    project_initial_conditions();
+
+    /**
+     * Newmark: the nodal acceleration at the end of the step from the
+     * displacement increment du and the nodal v and a at the start.
+     */
+    Tensor<1, dim>
+    end_acceleration(const Tensor<1, dim> &du,
+                     const Tensor<1, dim> &v,
+                     const Tensor<1, dim> &a) const
+    {
+      return (du - time_step * v -
+              time_step * time_step * (0.5 - beta) * a) /
+             (beta * time_step * time_step);
+    }
 
     /** Residual f_ext - f_int into `residual`, and the tangent if asked. */
     void
@@ -92,6 +120,10 @@ namespace mpm
     bool         linear_only;
     std::string  linear_solver;
     bool         scale_full_cells;
+    bool         dynamic;
+    double       beta;
+    double       gamma;
+    double       time_step = 0.;
 
     hp::FECollection<dim>              fe_collection;
     DoFHandler<dim>                    dof_handler;
@@ -103,6 +135,9 @@ namespace mpm
     TrilinosWrappers::MPI::Vector      correction;
     TrilinosWrappers::MPI::Vector      displacement;
     TrilinosWrappers::MPI::Vector      displacement_ghosted;
+    /** Dynamic runs: nodal velocity and acceleration at the step's start. */
+    TrilinosWrappers::MPI::Vector      velocity_ghosted;
+    TrilinosWrappers::MPI::Vector      acceleration_ghosted;
     double                             external_force_norm = 0.;
   };
 } // namespace mpm
