@@ -3,6 +3,9 @@
 //   (benchmarks.md section 4), for stretch and compression;
 // - neo-Hookean: a rigid rotation of a stretched state rotates the stress
 //   (sigma = R sigma_0 R^T) and leaves its invariants;
+// - Hencky in uniaxial strain with nu = 0: sigma_xx = E eps_L / exp(eps_L)
+//   (the Kirchhoff stress is E eps_L; benchmarks.md section 4), and
+//   objectivity;
 // - linear elastic (Jaumann) in small uniaxial strain: Hooke's law,
 //   sigma_xx = (lambda + 2 mu) eps, sigma_yy = sigma_zz = lambda eps;
 // - linear elastic (Jaumann) in uniaxial strain at a constant velocity
@@ -87,6 +90,47 @@ neo_hookean()
 }
 
 void
+hencky()
+{
+  const double E        = 1e6;
+  const auto   material = make("Hencky", E, 0.);
+  double       error    = 0.;
+  for (const double eps_L : {-0.5, -0.2, 0.1, 0.28, 0.5})
+    {
+      StepKinematics k;
+      k.F_old       = unit_symmetric_tensor<3>();
+      k.F_new       = unit_symmetric_tensor<3>();
+      k.F_new[0][0] = std::exp(eps_L);
+      k.dt          = 1.;
+      SymmetricTensor<2, 3> stress;
+      material->update_stress(k, stress, {});
+      error = std::max(error,
+                       std::abs(stress[0][0] / E - eps_L / std::exp(eps_L)));
+      error = std::max({error, std::abs(stress[1][1]), std::abs(stress[2][2])});
+    }
+  mpm_tests::check("Hencky uniaxial strain: sigma = E eps_L / exp(eps_L) to "
+                   "1e-12 E",
+                   error < 1e-12 * E);
+
+  const auto     material3 = make("Hencky", E, 0.3);
+  StepKinematics k;
+  k.F_old       = unit_symmetric_tensor<3>();
+  k.F_new       = unit_symmetric_tensor<3>();
+  k.F_new[0][0] = 1.2;
+  k.F_new[1][1] = 0.9;
+  k.F_new[0][1] = 0.1;
+  k.dt          = 1.;
+  SymmetricTensor<2, 3> s0, s1;
+  material3->update_stress(k, s0, {});
+  const Tensor<2, 3> R = rotation_z(0.7);
+  k.F_new              = R * k.F_new;
+  material3->update_stress(k, s1, {});
+  const Tensor<2, 3> expected = R * Tensor<2, 3>(s0) * transpose(R);
+  mpm_tests::check("Hencky is objective: sigma(R F) = R sigma(F) R^T",
+                   (Tensor<2, 3>(s1) - expected).norm() < 1e-9 * s0.norm());
+}
+
+void
 linear_elastic()
 {
   const double E = 1e6, nu = 0.3;
@@ -158,5 +202,6 @@ main(int argc, char **argv)
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   mpm_tests::initlog();
   neo_hookean();
+  hencky();
   linear_elastic();
 }

@@ -1,4 +1,5 @@
 #include <mpm/core/input_error.h>
+#include <mpm/materials/hencky.h>
 #include <mpm/materials/linear_elastic.h>
 #include <mpm/materials/material.h>
 #include <mpm/materials/neo_hookean.h>
@@ -12,11 +13,13 @@ namespace mpm
   {
     prm.declare_entry("Model",
                       "linear elastic",
-                      Patterns::Selection("linear elastic|neo-Hookean"),
+                      Patterns::Selection("linear elastic|neo-Hookean|Hencky"),
                       "Constitutive law. 'linear elastic': hypoelastic, "
                       "integrated with the Jaumann stress rate as in "
                       "Wieckowski (2004). 'neo-Hookean': compressible "
-                      "hyperelastic, sigma = (mu (b - I) + lambda ln(J) I)/J.");
+                      "hyperelastic, sigma = (mu (b - I) + lambda ln(J) I)/J. "
+                      "'Hencky': hyperelastic, Kirchhoff stress linear in the "
+                      "logarithmic strain.");
     prm.declare_entry("Density",
                       "1000",
                       Patterns::Double(0.),
@@ -43,9 +46,11 @@ namespace mpm
       return std::make_unique<LinearElastic>(prm, name, section_path);
     if (model == "neo-Hookean")
       return std::make_unique<NeoHookean>(prm, name, section_path);
+    if (model == "Hencky")
+      return std::make_unique<Hencky>(prm, name, section_path);
     throw InputError(section_path + "/Model = '" + model +
                      "' is not a known law; use one of: linear elastic, "
-                     "neo-Hookean.");
+                     "neo-Hookean, Hencky.");
   }
 
 
@@ -69,6 +74,50 @@ namespace mpm
     mu     = youngs_modulus / (2. * (1. + poissons_ratio));
     lambda = youngs_modulus * poissons_ratio /
              ((1. + poissons_ratio) * (1. - 2. * poissons_ratio));
+  }
+
+
+
+  SymmetricTensor<4, 3>
+  Material::numerical_spatial_tangent(
+    const StepKinematics &         kinematics,
+    const ArrayView<const double> &internal_variables) const
+  {
+    const double h = 1e-6;
+    std::vector<double> internal;
+    // Kirchhoff stress of the law at F (from a zero start stress, which
+    // laws whose stress depends on F alone ignore).
+    auto kirchhoff = [&](const Tensor<2, 3> &F) {
+      StepKinematics k = kinematics;
+      k.F_new          = F;
+      internal.assign(internal_variables.begin(), internal_variables.end());
+      SymmetricTensor<2, 3> sigma;
+      update_stress(k,
+                    sigma,
+                    ArrayView<double>(internal.data(), internal.size()));
+      return SymmetricTensor<2, 3>(determinant(F) * sigma);
+    };
+
+    const Tensor<2, 3> &        F   = kinematics.F_new;
+    const double                J   = determinant(F);
+    const Tensor<2, 3>          tau = kirchhoff(F);
+    SymmetricTensor<4, 3>       c;
+    const Tensor<2, 3>          I = unit_symmetric_tensor<3>();
+    for (unsigned int k = 0; k < 3; ++k)
+      for (unsigned int l = k; l < 3; ++l)
+        {
+          Tensor<2, 3> E;
+          E[k][l] = E[l][k] = (k == l ? 1. : 0.5);
+          const Tensor<2, 3> rate =
+            Tensor<2, 3>(kirchhoff((I + h * E) * F) -
+                         kirchhoff((I - h * E) * F)) /
+              (2. * h) -
+            E * tau - tau * E;
+          for (unsigned int i = 0; i < 3; ++i)
+            for (unsigned int j = i; j < 3; ++j)
+              c[i][j][k][l] = 0.5 * (rate[i][j] + rate[j][i]) / J;
+        }
+    return c;
   }
 
 

@@ -96,6 +96,19 @@ namespace mpm
     p_wave_speed() const;
 
   protected:
+    /**
+     * The spatial tangent by central differences of update_stress(), for
+     * laws whose stress depends on F alone: for a perturbation dF = h E F
+     * with E symmetric, the Truesdell rate of tau is
+     * (tau(F + dF) - tau(F - dF)) / 2h - E tau - tau E = c_tau : E.
+     * Accurate to about 1e-9 relative, which keeps Newton quadratic to that
+     * level.
+     */
+    SymmetricTensor<4, 3>
+    numerical_spatial_tangent(
+      const StepKinematics &         kinematics,
+      const ArrayView<const double> &internal_variables) const;
+
     Material(const ParameterHandler &prm,
              const std::string &     name,
              const std::string &     section_path);
