@@ -21,26 +21,13 @@
 
 using namespace dealii;
 
+/** Output in the test's directory, named after the scene. */
 std::map<std::string, std::vector<double>>
 run_scene(const std::string &scene, const std::vector<std::string> &settings)
 {
-  // Output goes to the test's own directory, named after the scene.
-  const std::string directory =
-    "output-" + scene.substr(scene.rfind('/') + 1);
-  std::vector<std::string> arguments = {"--set",
-                                        "Output/Directory=" + directory,
-                                        "--set",
-                                        "Output/Write ParaView output=false"};
-  for (const auto &s : settings)
-    {
-      arguments.push_back("--set");
-      arguments.push_back(s);
-    }
-  arguments.push_back(mpm_tests::source_file(scene));
-  const int code = mpm::run_command_line(arguments);
-  deallog << scene << ": exit code " << code << std::endl;
-  MPI_Barrier(MPI_COMM_WORLD);
-  return mpm_tests::read_csv(directory + "/time_series.csv");
+  return mpm_tests::run_scene(scene,
+                              "output-" + scene.substr(scene.rfind('/') + 1),
+                              settings);
 }
 
 void

@@ -6,6 +6,8 @@
 #include <deal.II/base/logstream.h>
 #include <deal.II/base/mpi.h>
 
+#include <mpm/core/application.h>
+
 #include <fstream>
 #include <iomanip>
 #include <map>
@@ -65,6 +67,31 @@ namespace mpm_tests
           columns[names[i]].push_back(std::stod(value));
       }
     return columns;
+  }
+  /**
+   * Run a scene through the mpm command line with its output in
+   * `directory` (no ParaView files) and the given 'Section/entry=value'
+   * settings; log the exit code and return the time series.
+   */
+  inline std::map<std::string, std::vector<double>>
+  run_scene(const std::string &             scene,
+            const std::string &             directory,
+            const std::vector<std::string> &settings = {})
+  {
+    std::vector<std::string> arguments = {"--set",
+                                          "Output/Directory=" + directory,
+                                          "--set",
+                                          "Output/Write ParaView output=false"};
+    for (const auto &s : settings)
+      {
+        arguments.push_back("--set");
+        arguments.push_back(s);
+      }
+    arguments.push_back(source_file(scene));
+    const int code = mpm::run_command_line(arguments);
+    dealii::deallog << directory << ": exit code " << code << std::endl;
+    MPI_Barrier(MPI_COMM_WORLD);
+    return read_csv(directory + "/time_series.csv");
   }
 } // namespace mpm_tests
 
