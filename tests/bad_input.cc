@@ -97,6 +97,17 @@ main(int argc, char **argv)
                  "Bodies/block/Upper corner=3, 3"}));
   run_case("time step above the stability limit",
            with({"Time stepping/Time step=0.1"}));
+  run_case("loads with the explicit scheme",
+           with({"Loads/Total force=0, -1",
+                 "Loads/Region lower corner=0.25, 0.4",
+                 "Loads/Region upper corner=0.75, 0.5"}));
+  run_case("quasi-static loads on no point",
+           with({"Time stepping/Scheme=quasi-static",
+                 "Loads/Total force=0, -1",
+                 "Loads/Region lower corner=0.9, 0.9",
+                 "Loads/Region upper corner=1, 1"}));
+  run_case("Newmark without a time step",
+           with({"Time stepping/Scheme=Newmark"}));
   run_case("points leave the grid",
            with({"Boundary conditions/Fixed boundaries=",
                  "Bodies/block/Initial velocity=0; -2",

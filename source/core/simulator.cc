@@ -191,7 +191,14 @@ namespace mpm
     points =
       std::make_unique<MaterialPoints<dim>>(triangulation, *mapping, n_internal);
     points->seed(bodies, materials, basis);
-    PointLoads<dim>(prm).apply(*points);
+    {
+      const PointLoads<dim> loads(prm);
+      if (loads.is_active() && scheme_name == "explicit")
+        throw InputError("Loads are applied by the quasi-static and Newmark "
+                         "schemes only; Time stepping/Scheme = explicit would "
+                         "ignore them.");
+      loads.apply(*points);
+    }
     if (points->n_global_points() == 0)
       throw InputError("No body has a material point inside the grid: check "
                        "the shapes in Bodies against Grid/Arguments.");

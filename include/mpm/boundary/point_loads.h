@@ -26,6 +26,13 @@ namespace mpm
     /** Parse the `Loads` subsection at top level. */
     explicit PointLoads(ParameterHandler &prm);
 
+    /** Whether the scene has a load. */
+    bool
+    is_active() const
+    {
+      return active;
+    }
+
     /** Write each point's share of the load into its properties. */
     void
     apply(MaterialPoints<dim> &points) const;
