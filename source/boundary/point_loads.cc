@@ -73,7 +73,7 @@ namespace mpm
         {
           const ArrayView<double> p = particle.get_properties();
           for (unsigned int d = 0; d < dim; ++d)
-            p[Layout::point_load + d] =
+            p[points.point_load_index() + d] =
               total_force[d] * p[Layout::reference_volume] / volume;
         }
   }

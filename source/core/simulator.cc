@@ -188,8 +188,10 @@ namespace mpm
     unsigned int n_internal = 0;
     for (const auto &m : materials)
       n_internal = std::max(n_internal, m->n_internal_variables());
-    points =
-      std::make_unique<MaterialPoints<dim>>(triangulation, *mapping, n_internal);
+    points = std::make_unique<MaterialPoints<dim>>(triangulation,
+                                                   *mapping,
+                                                   n_internal,
+                                                   scheme_name != "explicit");
     points->seed(bodies, materials, basis);
     {
       const PointLoads<dim> loads(prm);
@@ -434,7 +436,7 @@ namespace mpm
             const Tensor<1, dim> a = transfer->interpolate(
               support, GridNodes<dim>::NodalLayout::force);
             for (unsigned int d = 0; d < dim; ++d)
-              particle->get_properties()[PointLayout<dim>::acceleration + d] =
+              particle->get_properties()[points->acceleration_index() + d] =
                 a[d];
           });
       }

@@ -53,24 +53,17 @@ namespace mpm
     using Layout = PointLayout<dim>;
 
     {
+      const std::vector<std::string> names = points.property_names();
       std::vector<DataComponentInterpretation::DataComponentInterpretation>
-        interpretation(
-          Layout::n_properties(points.n_internal_variables()),
-          DataComponentInterpretation::component_is_scalar);
-      for (unsigned int d = 0; d < dim; ++d)
-        {
-          interpretation[Layout::velocity + d] =
+        interpretation(names.size(),
+                       DataComponentInterpretation::component_is_scalar);
+      for (const unsigned int first : points.vector_properties())
+        for (unsigned int d = 0; d < dim; ++d)
+          interpretation[first + d] =
             DataComponentInterpretation::component_is_part_of_vector;
-          interpretation[Layout::acceleration + d] =
-            DataComponentInterpretation::component_is_part_of_vector;
-          interpretation[Layout::point_load + d] =
-            DataComponentInterpretation::component_is_part_of_vector;
-        }
 
       Particles::DataOut<dim> data_out;
-      data_out.build_patches(points.handler(),
-                             Layout::names(points.n_internal_variables()),
-                             interpretation);
+      data_out.build_patches(points.handler(), names, interpretation);
       write_snapshot(data_out, "points", time, point_records);
     }
 

@@ -17,11 +17,7 @@ namespace mpm
     n[mass]             = "mass";
     n[reference_volume] = "reference_volume";
     for (unsigned int d = 0; d < dim; ++d)
-      {
-        n[velocity + d]     = "velocity";
-        n[acceleration + d] = "acceleration";
-        n[point_load + d]   = "point_load";
-      }
+      n[velocity + d] = "velocity";
     const char *axes = "xyz";
     for (unsigned int i = 0; i < dim; ++i)
       for (unsigned int j = 0; j < dim; ++j)
@@ -46,19 +42,54 @@ namespace mpm
   MaterialPoints<dim>::MaterialPoints(
     const parallel::distributed::Triangulation<dim> &tria,
     const Mapping<dim> &                             mapping,
-    const unsigned int                               n_internal_variables)
+    const unsigned int                               n_internal_variables,
+    const bool                                       implicit_fields)
     : triangulation(tria)
     , mapping(mapping)
     , particle_handler(tria,
                        mapping,
-                       Layout::n_properties(n_internal_variables))
+                       Layout::n_properties(n_internal_variables) +
+                         (implicit_fields ? 2 * dim : 0))
     , n_internal(n_internal_variables)
+    , implicit_fields(implicit_fields)
   {
     particle_handler.signals.particle_lost.connect(
       [this](const typename Particles::ParticleIterator<dim> &particle,
              const typename Triangulation<dim>::active_cell_iterator &) {
         lost_positions.push_back(particle->get_location());
       });
+  }
+
+
+
+  template <int dim>
+  std::vector<std::string>
+  MaterialPoints<dim>::property_names() const
+  {
+    std::vector<std::string> names = Layout::names(n_internal);
+    if (implicit_fields)
+      {
+        for (unsigned int d = 0; d < dim; ++d)
+          names.emplace_back("acceleration");
+        for (unsigned int d = 0; d < dim; ++d)
+          names.emplace_back("point_load");
+      }
+    return names;
+  }
+
+
+
+  template <int dim>
+  std::vector<unsigned int>
+  MaterialPoints<dim>::vector_properties() const
+  {
+    std::vector<unsigned int> vectors = {Layout::velocity};
+    if (implicit_fields)
+      {
+        vectors.push_back(acceleration_index());
+        vectors.push_back(point_load_index());
+      }
+    return vectors;
   }
 
 
@@ -115,8 +146,8 @@ namespace mpm
     if (Utilities::MPI::this_mpi_process(comm) == 0)
       first_id = 0; // MPI_Exscan leaves rank 0's result undefined
 
-    std::vector<double> properties(
-      Layout::n_properties(n_internal), 0.);
+    std::vector<double> properties(particle_handler.n_properties_per_particle(),
+                                   0.);
     for (unsigned int i = 0; i < candidates.size(); ++i)
       {
         const Candidate &c        = candidates[i];

@@ -227,7 +227,7 @@ namespace mpm
                   mass(dofs[i * dim + a]) += Nm;
                   momentum(dofs[i * dim + a]) += Nm * p[Layout::velocity + a];
                   mass_acceleration(dofs[i * dim + a]) +=
-                    Nm * p[Layout::acceleration + a];
+                    Nm * p[points.acceleration_index() + a];
                 }
           }
       }
@@ -342,7 +342,8 @@ namespace mpm
                 {
                   const double external =
                     load_factor * support.N[i] *
-                    (p[Layout::point_load + a] + p[Layout::mass] * gravity[a]);
+                    (p[points.point_load_index() + a] +
+                     p[Layout::mass] * gravity[a]);
                   cell_external(i * dim + a) += external;
                   cell_residual(i * dim + a) +=
                     external - point_force(i * dim + a);
@@ -583,7 +584,7 @@ namespace mpm
                   {
                     p[Layout::velocity + d] +=
                       time_step * ((1. - gamma) * a_old[d] + gamma * a_new[d]);
-                    p[Layout::acceleration + d] = a_new[d];
+                    p[points.acceleration_index() + d] = a_new[d];
                   }
               }
             particle.set_location(particle.get_location() +

@@ -28,9 +28,14 @@ namespace mpm
   public:
     using Layout = PointLayout<dim>;
 
+    /**
+     * `implicit_fields`: give every point an acceleration and a point load
+     * (the implicit schemes need them), after the internal variables.
+     */
     MaterialPoints(const parallel::distributed::Triangulation<dim> &tria,
                    const Mapping<dim> &                             mapping,
-                   const unsigned int n_internal_variables);
+                   const unsigned int n_internal_variables,
+                   const bool         implicit_fields);
 
     /**
      * Fill every locally owned cell with the points of the bodies that
@@ -82,6 +87,30 @@ namespace mpm
       return n_internal;
     }
 
+    /** Index of the acceleration (implicit fields only). */
+    unsigned int
+    acceleration_index() const
+    {
+      Assert(implicit_fields, ExcInternalError());
+      return Layout::internal_variables + n_internal;
+    }
+
+    /** Index of the force at full load (implicit fields only). */
+    unsigned int
+    point_load_index() const
+    {
+      Assert(implicit_fields, ExcInternalError());
+      return Layout::internal_variables + n_internal + dim;
+    }
+
+    /** Names of all properties, for output; vectors repeat their name. */
+    std::vector<std::string>
+    property_names() const;
+
+    /** The properties that are vectors (velocity and the implicit ones). */
+    std::vector<unsigned int>
+    vector_properties() const;
+
     types::particle_index
     n_global_points() const
     {
@@ -93,6 +122,7 @@ namespace mpm
     const Mapping<dim> &                             mapping;
     Particles::ParticleHandler<dim>                  particle_handler;
     const unsigned int              n_internal;
+    const bool                      implicit_fields;
 
     /** Filled by the particle_lost signal during a sort. */
     std::vector<Point<dim>> lost_positions;

@@ -18,8 +18,9 @@ namespace mpm
    * (plane strain keeps sigma_zz); F is dim x dim (F_zz = 1 in plane strain).
    * `work density` is the stress work per unit reference volume, the
    * point's strain energy for elastic laws. Internal variables of the laws
-   * follow at the end; a scene sizes them to the largest law it uses.
-   * `point load` is the external force on the point at full load.
+   * follow; a scene sizes them to the largest law it uses. Scenes with an
+   * implicit scheme add the acceleration and the point load after them (see
+   * MaterialPoints), so explicit runs do not carry them.
    */
   template <int dim>
   struct PointLayout
@@ -27,11 +28,7 @@ namespace mpm
     static constexpr unsigned int mass                 = 0;
     static constexpr unsigned int reference_volume     = 1;
     static constexpr unsigned int velocity             = 2;
-    /** Acceleration (implicit dynamics). */
-    static constexpr unsigned int acceleration         = velocity + dim;
-    /** Force applied to the point at full load (quasi-static loads). */
-    static constexpr unsigned int point_load           = acceleration + dim;
-    static constexpr unsigned int deformation_gradient = point_load + dim;
+    static constexpr unsigned int deformation_gradient = velocity + dim;
     static constexpr unsigned int stress = deformation_gradient + dim * dim;
     static constexpr unsigned int work_density       = stress + 6;
     static constexpr unsigned int body_id            = work_density + 1;
