@@ -56,11 +56,17 @@ namespace mpm
     prm.leave_subsection();
 
     prm.enter_subsection("Newmark");
-    prm.declare_entry("Beta", "0.25", Patterns::Double(0., 0.5),
-                      "Newmark beta; 0.25 with gamma 0.5 is the trapezoidal "
-                      "rule (no numerical damping).");
-    prm.declare_entry("Gamma", "0.5", Patterns::Double(0., 1.),
-                      "Newmark gamma.");
+    prm.declare_entry("Bossak alpha", "0", Patterns::Double(-0.5, 0.),
+                      "Bossak's alpha_B: the inertia is taken at "
+                      "(1 - alpha_B) a_n+1 + alpha_B a_n, which damps high "
+                      "frequencies. 0 is plain Newmark; -0.3 to -0.1 are "
+                      "usual.");
+    prm.declare_entry("Beta", "auto", Patterns::Anything(),
+                      "Newmark beta. auto: (1 - alpha_B)^2 / 4, that is 0.25 "
+                      "for plain Newmark (the trapezoidal rule, no numerical "
+                      "damping).");
+    prm.declare_entry("Gamma", "auto", Patterns::Anything(),
+                      "Newmark gamma. auto: 1/2 - alpha_B.");
     prm.leave_subsection();
   }
 
@@ -98,8 +104,25 @@ namespace mpm
     if (!(tolerance > 0.))
       throw InputError("Newton/Tolerance must be positive.");
     prm.enter_subsection("Newmark");
-    beta  = prm.get_double("Beta");
-    gamma = prm.get_double("Gamma");
+    bossak_alpha = prm.get_double("Bossak alpha");
+    auto number_or_auto = [&](const std::string &entry, const double automatic) {
+      const std::string text = prm.get(entry);
+      if (text == "auto")
+        return automatic;
+      try
+        {
+          std::size_t used  = 0;
+          const double value = std::stod(text, &used);
+          if (used == text.size())
+            return value;
+        }
+      catch (const std::exception &)
+        {}
+      throw InputError("Newmark/" + entry + " = '" + text +
+                       "' must be a number or 'auto'.");
+    };
+    beta  = number_or_auto("Beta", 0.25 * (1. - bossak_alpha) * (1. - bossak_alpha));
+    gamma = number_or_auto("Gamma", 0.5 - bossak_alpha);
     prm.leave_subsection();
     if (dynamic && !(beta > 0.))
       throw InputError("Newmark/Beta must be positive for the implicit "
@@ -279,7 +302,7 @@ namespace mpm
     std::vector<Tensor<1, dim>> a_n(Support<dim>::max_nodes);
     std::vector<double>         internal;
     const double                mass_stiffness =
-      dynamic ? 1. / (beta * time_step * time_step) : 0.;
+      dynamic ? (1. - bossak_alpha) / (beta * time_step * time_step) : 0.;
 
     for (const auto &cell : dof_handler.active_cell_iterators())
       {
@@ -353,11 +376,15 @@ namespace mpm
 
             if (dynamic)
               {
-                // Inertia m_p a(x_p) with the Newmark nodal acceleration,
-                // and its derivative, the consistent point mass.
+                // Inertia m_p a(x_p) with the Newmark (Bossak) nodal
+                // acceleration, and its derivative, the consistent point mass.
                 Tensor<1, dim> a_point;
                 for (unsigned int k = 0; k < support.n_nodes; ++k)
-                  a_point += support.N[k] * end_acceleration(du[k], v_n[k], a_n[k]);
+                  a_point +=
+                    support.N[k] *
+                    ((1. - bossak_alpha) *
+                       end_acceleration(du[k], v_n[k], a_n[k]) +
+                     bossak_alpha * a_n[k]);
                 const double m = p[Layout::mass];
                 for (unsigned int i = 0; i < support.n_nodes; ++i)
                   {

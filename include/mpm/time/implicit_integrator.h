@@ -121,6 +121,7 @@ namespace mpm
     std::string  linear_solver;
     bool         scale_full_cells;
     bool         dynamic;
+    double       bossak_alpha;
     double       beta;
     double       gamma;
     double       time_step = 0.;
