@@ -14,6 +14,7 @@
 #include <mpm/core/input_error.h>
 #include <mpm/time/implicit_integrator.h>
 
+#include <cmath>
 #include <iomanip>
 #include <sstream>
 
@@ -121,7 +122,8 @@ namespace mpm
       throw InputError("Newmark/" + entry + " = '" + text +
                        "' must be a number or 'auto'.");
     };
-    beta  = number_or_auto("Beta", 0.25 * (1. - bossak_alpha) * (1. - bossak_alpha));
+    beta =
+      number_or_auto("Beta", 0.25 * (1. - bossak_alpha) * (1. - bossak_alpha));
     gamma = number_or_auto("Gamma", 0.5 - bossak_alpha);
     prm.leave_subsection();
     if (dynamic && !(beta > 0.))
@@ -152,6 +154,7 @@ namespace mpm
     // normal displacement vanishes.
     constraints.clear();
     constraints.reinit(relevant_dofs);
+    bool unsupported_corner = false;
     DoFTools::make_hanging_node_constraints(dof_handler, constraints);
     for (const auto &cell : dof_handler.active_cell_iterators())
       {
@@ -185,10 +188,10 @@ namespace mpm
                 const bool along_axis =
                   std::abs(std::abs(n[pivot]) - 1.) < 1e-12;
                 if (!along_axis && constraint->n_normals > 1)
-                  throw InputError(
-                    "Boundary conditions: the quasi-static scheme supports "
-                    "corners between slip walls only when the walls are "
-                    "aligned with the axes.");
+                  {
+                    unsupported_corner = true;
+                    continue;
+                  }
                 constraints.add_line(dofs[pivot]);
                 if (!along_axis)
                   for (unsigned int a = 0; a < dim; ++a)
@@ -199,6 +202,13 @@ namespace mpm
               }
           }
       }
+    // Decided on all ranks together, so that all stop.
+    if (Utilities::MPI::logical_or(unsupported_corner,
+                                   points.get_communicator()))
+      throw RunError("Boundary conditions: the implicit schemes support "
+                     "corners between slip walls only when the walls are "
+                     "aligned with the axes, and material reached such a "
+                     "corner.");
     constraints.close();
 
     const MPI_Comm         comm = points.get_communicator();
@@ -289,6 +299,7 @@ namespace mpm
     if (with_tangent)
       tangent = 0.;
     double internal_force_square = 0.;
+    bool   inverted              = false;
 
     const unsigned int dofs_per_cell = fe_collection[0].n_dofs_per_cell();
     std::vector<types::global_dof_index> dofs(dofs_per_cell);
@@ -347,10 +358,14 @@ namespace mpm
                                    stress,
                                    ArrayView<double>(internal.data(),
                                                      internal.size()));
-            const SymmetricTensor<4, 3> c = material.spatial_tangent(
-              k,
-              stress,
-              ArrayView<const double>(internal.data(), internal.size()));
+            if (!(determinant(k.F_new) > 0.))
+              inverted = true;
+            SymmetricTensor<4, 3> c;
+            if (with_tangent)
+              c = material.spatial_tangent(
+                k,
+                stress,
+                ArrayView<const double>(internal.data(), internal.size()));
             PointAssembly<dim>::internal_force(
               support,
               dF,
@@ -411,6 +426,9 @@ namespace mpm
           constraints.distribute_local_to_global(cell_residual, dofs, residual);
         constraints.distribute_local_to_global(cell_external, dofs, correction);
       }
+    if (Utilities::MPI::logical_or(inverted, points.get_communicator()))
+      throw RunError("A Newton iterate inverted a material point (det F <= "
+                     "0).");
     if (with_tangent)
       tangent.compress(VectorOperation::add);
     residual.compress(VectorOperation::add);
@@ -456,21 +474,30 @@ namespace mpm
   ImplicitIntegrator<dim>::solve_linear_system()
   {
     correction = 0.;
-    SolverControl control(1000, 1e-12 * residual.l2_norm(), false, false);
-    if (linear_solver == "direct")
+    SolverControl control(1000, 1e-10 * residual.l2_norm(), false, false);
+    try
       {
-        TrilinosWrappers::SolverDirect solver(control);
-        solver.solve(tangent, correction, residual);
+        if (linear_solver == "direct")
+          {
+            TrilinosWrappers::SolverDirect solver(control);
+            solver.solve(tangent, correction, residual);
+          }
+        else
+          {
+            TrilinosWrappers::PreconditionAMG                 amg;
+            TrilinosWrappers::PreconditionAMG::AdditionalData data;
+            data.elliptic              = true;
+            data.higher_order_elements = false;
+            amg.initialize(tangent, data);
+            SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
+            cg.solve(tangent, correction, residual, amg);
+          }
       }
-    else
+    catch (const std::exception &e)
       {
-        TrilinosWrappers::PreconditionAMG                 amg;
-        TrilinosWrappers::PreconditionAMG::AdditionalData data;
-        data.elliptic              = true;
-        data.higher_order_elements = false;
-        amg.initialize(tangent, data);
-        SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
-        cg.solve(tangent, correction, residual, amg);
+        // A singular tangent or a solver that does not converge: the
+        // residual norms are global, so every rank gets here together.
+        throw RunError(std::string("The linear solver failed: ") + e.what());
       }
     constraints.distribute(correction);
   }
@@ -505,6 +532,8 @@ namespace mpm
               << ": out-of-balance ratio " << std::scientific
               << std::setprecision(3) << ratio << std::defaultfloat
               << std::endl;
+        if (!std::isfinite(ratio))
+          throw RunError("The out-of-balance force is not finite.");
         if (ratio < tolerance || (linear_only && iteration == 1))
           {
             converged = true;

@@ -1,5 +1,5 @@
-#ifndef mpm_time_implicit_integrator.h
-#define mpm_time_implicit_integrator.h
+#ifndef mpm_time_implicit_integrator_h
+#define mpm_time_implicit_integrator_h
 
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/parameter_handler.h>
