@@ -342,12 +342,7 @@ namespace mpm
             const Tensor<2, dim>          dF =
               PointAssembly<dim>::deformation_increment(support, du);
             const Tensor<2, dim> F_n = Layout::get_deformation_gradient(p);
-            StepKinematics       k;
-            k.F_old             = Layout::embed(F_n, 1.);
-            k.F_new             = Layout::embed(dF * F_n, 1.);
-            k.dt                = 1.;
-            k.velocity_gradient =
-              Layout::embed(dF, 1.) - Tensor<2, 3>(unit_symmetric_tensor<3>());
+            const StepKinematics k   = step_kinematics(dF, F_n);
             const Material &material =
               *materials[static_cast<unsigned int>(p[Layout::material_id])];
             SymmetricTensor<2, 3> stress = Layout::get_stress(p);
@@ -599,12 +594,7 @@ namespace mpm
               PointAssembly<dim>::deformation_increment(support, du);
             const Tensor<2, dim> F_n = Layout::get_deformation_gradient(p);
             const Tensor<2, dim> F   = dF * F_n;
-            StepKinematics       k;
-            k.F_old = Layout::embed(F_n, 1.);
-            k.F_new = Layout::embed(F, 1.);
-            k.dt    = 1.;
-            k.velocity_gradient =
-              Layout::embed(dF, 1.) - Tensor<2, 3>(unit_symmetric_tensor<3>());
+            const StepKinematics k   = step_kinematics(dF, F_n);
             const Material &material =
               *materials[static_cast<unsigned int>(p[Layout::material_id])];
             SymmetricTensor<2, 3>       stress     = Layout::get_stress(p);

@@ -102,6 +102,22 @@ namespace mpm
     void
     solve_linear_system();
 
+    /**
+     * What the law sees of a step with deformation increment dF from F_n:
+     * F_new = dF F_n, and with dt = 1 the velocity gradient L = dF - I.
+     */
+    static StepKinematics
+    step_kinematics(const Tensor<2, dim> &dF, const Tensor<2, dim> &F_n)
+    {
+      StepKinematics k;
+      k.F_old = PointLayout<dim>::embed(F_n, 1.);
+      k.F_new = PointLayout<dim>::embed(dF * F_n, 1.);
+      k.dt    = 1.;
+      k.velocity_gradient = PointLayout<dim>::embed(dF, 1.) -
+                            Tensor<2, 3>(unit_symmetric_tensor<3>());
+      return k;
+    }
+
     /** Deformation, stress and position of the converged step. */
     void
     update_points();
