@@ -101,6 +101,12 @@ main(int argc, char **argv)
            with({"Loads/Total force=0, -1",
                  "Loads/Region lower corner=0.25, 0.4",
                  "Loads/Region upper corner=0.75, 0.5"}));
+  run_case("contact boundary with the explicit scheme",
+           with({"Boundary conditions/Contact boundaries=bottom"}));
+  run_case("contact walls meeting at a corner",
+           with({"Time stepping/Scheme=quasi-static",
+                 "Boundary conditions/Fixed boundaries=",
+                 "Boundary conditions/Contact boundaries=bottom, left"}));
   run_case("quasi-static loads on no point",
            with({"Time stepping/Scheme=quasi-static",
                  "Loads/Total force=0, -1",

@@ -23,6 +23,16 @@ namespace mpm
                       Patterns::List(Patterns::Anything()),
                       "Named boundaries whose nodes have zero normal "
                       "velocity and slide freely along the boundary.");
+    prm.declare_entry("Contact boundaries",
+                      "",
+                      Patterns::List(Patterns::Anything()),
+                      "Named boundaries that hold the material without slip "
+                      "where it presses on them and let it go where it "
+                      "pulls away (unilateral contact with full friction), "
+                      "so that a body can roll or lift off. Implicit "
+                      "schemes only: each step finds the contact nodes "
+                      "by an active set, releasing nodes whose wall force "
+                      "pulls and engaging nodes that move into the wall.");
     prm.leave_subsection();
   }
 
@@ -35,6 +45,8 @@ namespace mpm
     prm.enter_subsection("Boundary conditions");
     fixed_names = Utilities::split_string_list(prm.get("Fixed boundaries"));
     slip_names  = Utilities::split_string_list(prm.get("Slip boundaries"));
+    contact_names =
+      Utilities::split_string_list(prm.get("Contact boundaries"));
     prm.leave_subsection();
     for (const auto &name : fixed_names)
       fixed_ids.push_back(
@@ -42,6 +54,9 @@ namespace mpm
     for (const auto &name : slip_names)
       slip_ids.push_back(
         grid.boundary_id(name, "Boundary conditions/Slip boundaries"));
+    for (const auto &name : contact_names)
+      contact_ids.push_back(
+        grid.boundary_id(name, "Boundary conditions/Contact boundaries"));
   }
 
 
@@ -76,6 +91,9 @@ namespace mpm
     };
     check(fixed_ids, fixed_names, "Boundary conditions/Fixed boundaries");
     check(slip_ids, slip_names, "Boundary conditions/Slip boundaries");
+    check(contact_ids,
+          contact_names,
+          "Boundary conditions/Contact boundaries");
 
     constexpr unsigned int n_components =
       GridNodes<dim>::NodalLayout::n_components;
@@ -92,6 +110,7 @@ namespace mpm
     struct NodeFaces
     {
       bool                                              fixed = false;
+      Tensor<1, dim>                                    contact_normal;
       std::map<types::boundary_id, Tensor<1, dim>> slip_normals;
     };
     std::map<unsigned int, NodeFaces> boundary_nodes;
@@ -111,7 +130,10 @@ namespace mpm
               fixed_ids.end();
             const bool slip =
               std::find(slip_ids.begin(), slip_ids.end(), id) != slip_ids.end();
-            if (!fixed && !slip)
+            const bool contact =
+              std::find(contact_ids.begin(), contact_ids.end(), id) !=
+              contact_ids.end();
+            if (!fixed && !slip && !contact)
               continue;
 
             Tensor<1, dim> normal;
@@ -129,17 +151,46 @@ namespace mpm
                   face->vertex_dof_index(v, 0))];
                 if (fixed)
                   node.fixed = true;
+                else if (contact)
+                  node.contact_normal += normal;
                 else
                   node.slip_normals[id] += normal;
               }
           }
       }
 
+    // A free contact node keeps the components along the wall, which are
+    // grid components only for walls along the axes.
+    bool slanted_contact = false;
+    for (const auto &[node, faces] : boundary_nodes)
+      if (faces.contact_normal.norm() > 0.)
+        {
+          const Tensor<1, dim> n = faces.contact_normal / faces.contact_normal.norm();
+          bool along_axis = false;
+          for (unsigned int d = 0; d < dim; ++d)
+            along_axis |= std::abs(std::abs(n[d]) - 1.) < 1e-10;
+          slanted_contact |= !along_axis;
+        }
+    if (Utilities::MPI::logical_or(slanted_contact,
+                                   tria.get_communicator()))
+      throw InputError("Boundary conditions/Contact boundaries: a contact "
+                       "wall must lie along a grid axis, and its corners "
+                       "may not meet another contact wall. For an inclined "
+                       "plane, tilt the gravity instead (see "
+                       "prm/rolling_disk.prm).");
+
     for (const auto &[node, faces] : boundary_nodes)
       {
         Constraint constraint;
         if (faces.fixed)
           constraint.n_normals = dim;
+        else if (faces.contact_normal.norm() > 0.)
+          {
+            constraint.n_normals  = dim;
+            constraint.unilateral = true;
+            constraint.outward =
+              faces.contact_normal / faces.contact_normal.norm();
+          }
         else
           for (const auto &[id, sum] : faces.slip_normals)
             {

@@ -80,7 +80,8 @@ namespace mpm
     prm.declare_entry("Time series file", "time_series.csv",
                       Patterns::Anything(),
                       "CSV file (in the output directory) with time, "
-                      "energies, momentum, mass and tracked points.");
+                      "energies, momentum, mass, centre of mass and tracked "
+                      "points.");
     prm.declare_entry("Time series interval", "0", Patterns::Double(0.),
                       "Simulated time between rows of the time series; 0 "
                       "writes every step.");
@@ -174,6 +175,11 @@ namespace mpm
 
     grid = std::make_unique<BackgroundGrid<dim>>(prm);
     dirichlet = std::make_unique<DirichletConditions<dim>>(prm, *grid);
+    if (dirichlet->has_contact() && scheme_name == "explicit")
+      throw InputError("Boundary conditions/Contact boundaries are handled by "
+                       "the quasi-static and Newmark schemes only; with Time "
+                       "stepping/Scheme = explicit use Fixed or Slip "
+                       "boundaries.");
 
     // Set up the grid and everything on it.
     grid->create(triangulation);

@@ -49,6 +49,8 @@ namespace mpm
         for (unsigned int d = 0; d < dim; ++d)
           file << ",momentum_" << axes[d];
         file << ",mass";
+        for (unsigned int d = 0; d < dim; ++d)
+          file << ",centre_of_mass_" << axes[d];
         for (unsigned int k = 0; k < tracked_ids.size(); ++k)
           {
             for (unsigned int d = 0; d < dim; ++d)
@@ -71,10 +73,11 @@ namespace mpm
                              const MaterialPoints<dim> &points)
   {
     using Layout = PointLayout<dim>;
-    // Layout of the reduced buffer: 4 scalars, momentum, then 2 dim values
-    // per tracked point (only its owner adds them).
+    // Layout of the reduced buffer: 4 scalars, momentum, first moment of
+    // mass, then 2 dim values per tracked point (only its owner adds them).
     const unsigned int  n_tracked = tracked_ids.size();
-    std::vector<double> sums(4 + dim + 2 * dim * n_tracked, 0.);
+    const unsigned int  tracked   = 4 + 2 * dim;
+    std::vector<double> sums(tracked + 2 * dim * n_tracked, 0.);
     for (const auto &particle : points.handler())
       {
         const ArrayView<const double> p = particle.get_properties();
@@ -86,13 +89,16 @@ namespace mpm
         sums[2] -= m * (gravity * x);
         sums[3] += m;
         for (unsigned int d = 0; d < dim; ++d)
-          sums[4 + d] += m * v[d];
+          {
+            sums[4 + d] += m * v[d];
+            sums[4 + dim + d] += m * x[d];
+          }
         for (unsigned int k = 0; k < n_tracked; ++k)
           if (particle.get_id() == tracked_ids[k])
             for (unsigned int d = 0; d < dim; ++d)
               {
-                sums[4 + dim + 2 * dim * k + d]       = x[d];
-                sums[4 + dim + 2 * dim * k + dim + d] = v[d];
+                sums[tracked + 2 * dim * k + d]       = x[d];
+                sums[tracked + 2 * dim * k + dim + d] = v[d];
               }
       }
     MPI_Allreduce(MPI_IN_PLACE, sums.data(), sums.size(), MPI_DOUBLE, MPI_SUM,
@@ -114,7 +120,9 @@ namespace mpm
         for (unsigned int d = 0; d < dim; ++d)
           file << ',' << result.momentum[d];
         file << ',' << result.mass;
-        for (unsigned int k = 4 + dim; k < sums.size(); ++k)
+        for (unsigned int d = 0; d < dim; ++d)
+          file << ',' << sums[4 + dim + d] / result.mass;
+        for (unsigned int k = tracked; k < sums.size(); ++k)
           file << ',' << sums[k];
         file << '\n';
         file.flush();

@@ -68,6 +68,16 @@ namespace mpm
                       "damping).");
     prm.declare_entry("Gamma", "auto", Patterns::Anything(),
                       "Newmark gamma. auto: 1/2 - alpha_B.");
+    prm.declare_entry("Mass matrix", "consistent",
+                      Patterns::Selection("consistent|lumped"),
+                      "consistent: the inertia m_p a(x_p) of each point, "
+                      "with mass m_p N_i N_k (Iaconeta et al. eq. 30). "
+                      "lumped: the nodal masses sum_p m_p N_i on the "
+                      "diagonal, as the explicit scheme uses. A node reached "
+                      "by only one or two points has a nearly singular "
+                      "consistent mass and stiffness; the lumped mass keeps "
+                      "Newton robust on fast-moving bodies with thin "
+                      "surface cells.");
     prm.leave_subsection();
   }
 
@@ -125,6 +135,7 @@ namespace mpm
     beta =
       number_or_auto("Beta", 0.25 * (1. - bossak_alpha) * (1. - bossak_alpha));
     gamma = number_or_auto("Gamma", 0.5 - bossak_alpha);
+    lumped_mass = prm.get("Mass matrix") == "lumped";
     prm.leave_subsection();
     if (dynamic && !(beta > 0.))
       throw InputError("Newmark/Beta must be positive for the implicit "
@@ -149,6 +160,44 @@ namespace mpm
     owned_dofs = dof_handler.locally_owned_dofs();
     DoFTools::extract_locally_relevant_dofs(dof_handler, relevant_dofs);
 
+    // Contact nodes stay engaged into the new step only while material
+    // still touches them.
+    if (dirichlet.has_contact())
+      {
+        const TrilinosWrappers::MPI::Vector touching = contact_gaps(false);
+        for_each_contact_node(
+          [&](const unsigned int node, const types::global_dof_index dof0,
+              const auto &) {
+            if (touching(dof0) == 0.)
+              engaged_contact_nodes.erase(node);
+          });
+      }
+    make_constraints();
+
+    const MPI_Comm         comm = points.get_communicator();
+    DynamicSparsityPattern dsp(relevant_dofs);
+    // Constrained rows keep their entries, so that releasing a contact node
+    // needs no new pattern.
+    DoFTools::make_sparsity_pattern(dof_handler, dsp, constraints, true);
+    SparsityTools::distribute_sparsity_pattern(dsp, owned_dofs, comm,
+                                               relevant_dofs);
+    tangent.reinit(owned_dofs, owned_dofs, dsp, comm);
+    residual.reinit(owned_dofs, comm);
+    correction.reinit(owned_dofs, comm);
+    displacement.reinit(owned_dofs, comm);
+    displacement_ghosted.reinit(owned_dofs, relevant_dofs, comm);
+    velocity_ghosted.reinit(owned_dofs, relevant_dofs, comm);
+    acceleration_ghosted.reinit(owned_dofs, relevant_dofs, comm);
+    if (dirichlet.has_contact())
+      unconstrained_residual.reinit(owned_dofs, relevant_dofs, comm, true);
+  }
+
+
+
+  template <int dim>
+  void
+  ImplicitIntegrator<dim>::make_constraints()
+  {
     // Grid conditions on the nodes of active cells: a wall along an axis
     // fixes that component; a slanted wall ties the components so that the
     // normal displacement vanishes.
@@ -162,13 +211,26 @@ namespace mpm
           continue;
         for (const unsigned int v : cell->vertex_indices())
           {
-            const auto *constraint = dirichlet.constraint_of(
-              basis.node_of(cell->active_cell_index(), v));
+            const unsigned int node =
+              basis.node_of(cell->active_cell_index(), v);
+            const auto *constraint = dirichlet.constraint_of(node);
             if (constraint == nullptr)
               continue;
             std::array<types::global_dof_index, dim> dofs;
             for (unsigned int a = 0; a < dim; ++a)
               dofs[a] = cell->vertex_dof_index(v, a, 0);
+            if (constraint->unilateral &&
+                engaged_contact_nodes.count(node) == 0)
+              {
+                // A free contact node keeps no slip along the wall, which
+                // a body rolling without slip satisfies on the whole line
+                // of the wall; only its normal motion is free.
+                for (unsigned int a = 0; a < dim; ++a)
+                  if (std::abs(constraint->outward[a]) < 0.5 &&
+                      !constraints.is_constrained(dofs[a]))
+                    constraints.add_line(dofs[a]);
+                continue;
+              }
             if (constraint->n_normals == dim)
               {
                 for (unsigned int a = 0; a < dim; ++a)
@@ -211,18 +273,160 @@ namespace mpm
                      "corner.");
     constraints.close();
 
-    const MPI_Comm         comm = points.get_communicator();
-    DynamicSparsityPattern dsp(relevant_dofs);
-    DoFTools::make_sparsity_pattern(dof_handler, dsp, constraints, false);
-    SparsityTools::distribute_sparsity_pattern(dsp, owned_dofs, comm,
-                                               relevant_dofs);
-    tangent.reinit(owned_dofs, owned_dofs, dsp, comm);
-    residual.reinit(owned_dofs, comm);
-    correction.reinit(owned_dofs, comm);
-    displacement.reinit(owned_dofs, comm);
-    displacement_ghosted.reinit(owned_dofs, relevant_dofs, comm);
-    velocity_ghosted.reinit(owned_dofs, relevant_dofs, comm);
-    acceleration_ghosted.reinit(owned_dofs, relevant_dofs, comm);
+  }
+
+
+
+  template <int dim>
+  template <typename Function>
+  void
+  ImplicitIntegrator<dim>::for_each_contact_node(const Function &f) const
+  {
+    std::set<unsigned int> visited;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        if (!cell->is_locally_owned() || cell->active_fe_index() != 0)
+          continue;
+        for (const unsigned int v : cell->vertex_indices())
+          {
+            const unsigned int node =
+              basis.node_of(cell->active_cell_index(), v);
+            const auto *constraint = dirichlet.constraint_of(node);
+            if (constraint != nullptr && constraint->unilateral &&
+                visited.insert(node).second)
+              f(node, cell->vertex_dof_index(v, 0, 0), *constraint);
+          }
+      }
+  }
+
+
+
+  template <int dim>
+  TrilinosWrappers::MPI::Vector
+  ImplicitIntegrator<dim>::contact_gaps(const bool after_solve) const
+  {
+    using Layout         = PointLayout<dim>;
+    const MPI_Comm comm  = points.get_communicator();
+    // Summed over the ranks that share a node, so that all decide alike.
+    TrilinosWrappers::MPI::Vector flags;
+    flags.reinit(owned_dofs, relevant_dofs, comm, true);
+    std::vector<types::global_dof_index> dofs(
+      fe_collection[0].n_dofs_per_cell());
+    Support<dim> support;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        if (!cell->is_locally_owned() || cell->active_fe_index() != 0)
+          continue;
+        std::vector<unsigned int> contact_vertices;
+        for (const unsigned int v : cell->vertex_indices())
+          {
+            const auto *c = dirichlet.constraint_of(
+              basis.node_of(cell->active_cell_index(), v));
+            if (c != nullptr && c->unilateral)
+              contact_vertices.push_back(v);
+          }
+        if (contact_vertices.empty())
+          continue;
+        cell->get_dof_indices(dofs);
+        for (const auto &particle : points.handler().particles_in_cell(cell))
+          {
+            const ArrayView<const double> p = particle.get_properties();
+            // The material of a point reaches half its spacing beyond it.
+            const double reach =
+              0.5 * std::pow(determinant(Layout::get_deformation_gradient(p)) *
+                               p[Layout::reference_volume],
+                             1. / dim);
+            Point<dim> x = particle.get_location();
+            if (after_solve)
+              {
+                basis.evaluate(cell->active_cell_index(),
+                               particle.get_reference_location(),
+                               support);
+                for (unsigned int i = 0; i < support.n_nodes; ++i)
+                  for (unsigned int a = 0; a < dim; ++a)
+                    x[a] += support.N[i] * displacement_ghosted(dofs[i * dim + a]);
+              }
+            for (const unsigned int v : contact_vertices)
+              {
+                const auto *c = dirichlet.constraint_of(
+                  basis.node_of(cell->active_cell_index(), v));
+                const double gap_before =
+                  (cell->vertex(v) - particle.get_location()) * c->outward;
+                const double gap = (cell->vertex(v) - x) * c->outward;
+                if (gap < reach && (!after_solve || gap < gap_before))
+                  flags(cell->vertex_dof_index(v, 0, 0)) += 1.;
+              }
+          }
+      }
+    flags.compress(VectorOperation::add);
+    TrilinosWrappers::MPI::Vector ghosted(owned_dofs, relevant_dofs, comm);
+    ghosted = flags;
+    return ghosted;
+  }
+
+
+
+  template <int dim>
+  bool
+  ImplicitIntegrator<dim>::update_contact_set()
+  {
+    const MPI_Comm                comm = points.get_communicator();
+    TrilinosWrappers::MPI::Vector residual_at_nodes(owned_dofs,
+                                                    relevant_dofs,
+                                                    comm);
+    residual_at_nodes = unconstrained_residual;
+    const TrilinosWrappers::MPI::Vector closing = contact_gaps(true);
+    // Ranks that share a node see the same ghosted values and so decide
+    // alike; each node is counted by the owner of its first dof.
+    unsigned int released = 0, engaged = 0;
+    for_each_contact_node([&](const unsigned int            node,
+                              const types::global_dof_index dof0,
+                              const auto &                  constraint) {
+      if (changed_contact_nodes.count(node) > 0)
+        return;
+      const bool counted = owned_dofs.is_element(dof0);
+      if (engaged_contact_nodes.count(node) > 0)
+        {
+          // The wall force on the material is minus the out-of-balance
+          // force; it pulls when it points out of the grid.
+          double pull = 0.;
+          for (unsigned int a = 0; a < dim; ++a)
+            pull -= residual_at_nodes(dof0 + a) * constraint.outward[a];
+          if (pull > 0.)
+            {
+              engaged_contact_nodes.erase(node);
+              changed_contact_nodes.insert(node);
+              released += counted;
+            }
+        }
+      else if (closing(dof0) > 0.)
+        {
+          engaged_contact_nodes.insert(node);
+          changed_contact_nodes.insert(node);
+          engaged += counted;
+        }
+    });
+    released = Utilities::MPI::sum(released, comm);
+    engaged  = Utilities::MPI::sum(engaged, comm);
+    if (released + engaged > 0)
+      pcout << "    contact: " << released << " node(s) released, " << engaged
+            << " engaged" << std::endl;
+    return released + engaged > 0;
+  }
+
+
+
+  template <int dim>
+  void
+  ImplicitIntegrator<dim>::constrain_initial_conditions()
+  {
+    TrilinosWrappers::MPI::Vector velocity(projected_velocity),
+      acceleration(projected_acceleration);
+    // Grid conditions hold for the nodal velocity and acceleration too.
+    constraints.distribute(velocity);
+    constraints.distribute(acceleration);
+    velocity_ghosted     = velocity;
+    acceleration_ghosted = acceleration;
   }
 
 
@@ -268,21 +472,17 @@ namespace mpm
     momentum.compress(VectorOperation::add);
     mass_acceleration.compress(VectorOperation::add);
 
-    TrilinosWrappers::MPI::Vector velocity(owned_dofs, comm),
-      acceleration(owned_dofs, comm);
+    projected_velocity.reinit(owned_dofs, comm);
+    projected_acceleration.reinit(owned_dofs, comm);
     for (const auto i : owned_dofs)
       if (mass(i) > 0.)
         {
-          velocity(i)     = momentum(i) / mass(i);
-          acceleration(i) = mass_acceleration(i) / mass(i);
+          projected_velocity(i)     = momentum(i) / mass(i);
+          projected_acceleration(i) = mass_acceleration(i) / mass(i);
         }
-    velocity.compress(VectorOperation::insert);
-    acceleration.compress(VectorOperation::insert);
-    // Grid conditions hold for the nodal velocity and acceleration too.
-    constraints.distribute(velocity);
-    constraints.distribute(acceleration);
-    velocity_ghosted     = velocity;
-    acceleration_ghosted = acceleration;
+    projected_velocity.compress(VectorOperation::insert);
+    projected_acceleration.compress(VectorOperation::insert);
+    constrain_initial_conditions();
   }
 } // namespace mpm
 
@@ -296,6 +496,8 @@ namespace mpm
     using Layout = PointLayout<dim>;
     residual     = 0.;
     correction   = 0.; // holds f_ext here, for the convergence measure
+    if (dirichlet.has_contact())
+      unconstrained_residual = 0.;
     if (with_tangent)
       tangent = 0.;
     double internal_force_square = 0.;
@@ -386,25 +588,34 @@ namespace mpm
 
             if (dynamic)
               {
-                // Inertia m_p a(x_p) with the Newmark (Bossak) nodal
-                // acceleration, and its derivative, the consistent point mass.
+                // Inertia with the Newmark (Bossak) nodal acceleration, and
+                // its derivative. Consistent: m_p a(x_p) at the point, mass
+                // m_p N_i N_k ([I] eq. 30). Lumped: m_p N_i a_i, mass
+                // m_p N_i on the diagonal.
+                std::array<Tensor<1, dim>, Support<dim>::max_nodes> a_node;
                 Tensor<1, dim> a_point;
                 for (unsigned int k = 0; k < support.n_nodes; ++k)
-                  a_point +=
-                    support.N[k] *
-                    ((1. - bossak_alpha) *
-                       end_acceleration(du[k], v_n[k], a_n[k]) +
-                     bossak_alpha * a_n[k]);
+                  {
+                    a_node[k] = (1. - bossak_alpha) *
+                                  end_acceleration(du[k], v_n[k], a_n[k]) +
+                                bossak_alpha * a_n[k];
+                    a_point += support.N[k] * a_node[k];
+                  }
                 const double m = p[Layout::mass];
                 for (unsigned int i = 0; i < support.n_nodes; ++i)
                   {
+                    const double mass_i = support.N[i] * m;
                     for (unsigned int a = 0; a < dim; ++a)
-                      cell_residual(i * dim + a) -= support.N[i] * m * a_point[a];
-                    if (with_tangent)
-                      for (unsigned int k = 0; k < support.n_nodes; ++k)
+                      cell_residual(i * dim + a) -=
+                        mass_i * (lumped_mass ? a_node[i][a] : a_point[a]);
+                    if (!with_tangent)
+                      continue;
+                    for (unsigned int k = 0; k < support.n_nodes; ++k)
+                      if (!lumped_mass || k == i)
                         for (unsigned int a = 0; a < dim; ++a)
                           cell_tangent(i * dim + a, k * dim + a) +=
-                            support.N[i] * support.N[k] * m * mass_stiffness;
+                            mass_i * (lumped_mass ? 1. : support.N[k]) *
+                            mass_stiffness;
                   }
               }
           }
@@ -420,6 +631,8 @@ namespace mpm
         else
           constraints.distribute_local_to_global(cell_residual, dofs, residual);
         constraints.distribute_local_to_global(cell_external, dofs, correction);
+        if (dirichlet.has_contact())
+          unconstrained_residual.add(dofs, cell_residual);
       }
     if (Utilities::MPI::logical_or(inverted, points.get_communicator()))
       throw RunError("A Newton iterate inverted a material point (det F <= "
@@ -428,6 +641,8 @@ namespace mpm
       tangent.compress(VectorOperation::add);
     residual.compress(VectorOperation::add);
     correction.compress(VectorOperation::add);
+    if (dirichlet.has_contact())
+      unconstrained_residual.compress(VectorOperation::add);
 
     // The scale of the forces ([B] eq. 31): the external load, or, where
     // none acts (a scene driven by its boundaries alone), the internal
@@ -510,9 +725,49 @@ namespace mpm
       if (dynamic)
         project_initial_conditions();
     }
+    // Dynamic runs start Newton from the constant-acceleration predictor
+    // du = dt v_n + dt^2/2 a_n: for a body in motion, du = 0 would mean an
+    // inertia force of order m v_n / dt at the first iterate.
     displacement = 0.;
+    if (dynamic)
+      {
+        displacement.add(dt, projected_velocity);
+        displacement.add(0.5 * dt * dt, projected_acceleration);
+        constraints.distribute(displacement);
+      }
     displacement_ghosted = displacement;
 
+    // Contact boundaries: solve, correct the contact set, and solve again
+    // from there until the set holds. A node changes at most once per step:
+    // a node that pulls while held but moves into the wall when free would
+    // otherwise flip for ever.
+    changed_contact_nodes.clear();
+    constexpr unsigned int max_contact_rounds = 10;
+    for (unsigned int round = 1;; ++round)
+      {
+        solve_newton(load_factor);
+        if (!dirichlet.has_contact() || !update_contact_set())
+          break;
+        if (round == max_contact_rounds)
+          throw RunError("The contact nodes did not settle in " +
+                         std::to_string(max_contact_rounds) +
+                         " rounds of the step.");
+        make_constraints();
+        constraints.distribute(displacement);
+        displacement_ghosted = displacement;
+        if (dynamic)
+          constrain_initial_conditions();
+      }
+    TimerOutput::Scope t(timer, "G2P");
+    update_points();
+  }
+
+
+
+  template <int dim>
+  void
+  ImplicitIntegrator<dim>::solve_newton(const double load_factor)
+  {
     bool converged = false;
     for (unsigned int iteration = 0; iteration <= max_iterations; ++iteration)
       {
@@ -547,15 +802,13 @@ namespace mpm
       {
         std::ostringstream message;
         if (dynamic)
-          message << "The time step of size " << dt;
+          message << "The time step of size " << time_step;
         else
           message << "The load step to load factor " << load_factor;
         message << " did not converge in " << max_iterations
                 << " Newton iterations.";
         throw RunError(message.str());
       }
-    TimerOutput::Scope t(timer, "G2P");
-    update_points();
   }
 
 

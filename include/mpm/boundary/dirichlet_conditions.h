@@ -16,11 +16,14 @@ namespace mpm
 
   /**
    * Velocity conditions on named boundaries of the background grid:
-   * `fixed` (zero velocity) and `slip` (zero normal velocity). The faces of
-   * one boundary id form one wall, whose normal at a node is the average of
-   * its faces' normals there, so a curved slip wall stays a slip wall. A
-   * node where walls of different ids meet loses each wall's normal
-   * component; a node on a fixed face is fixed.
+   * `fixed` (zero velocity), `slip` (zero normal velocity) and `contact`
+   * (zero velocity while the material presses on the wall, free where it
+   * pulls away: unilateral contact without slip, which lets a body roll).
+   * The faces of one boundary id form one wall, whose normal at a node is
+   * the average of its faces' normals there, so a curved slip wall stays a
+   * slip wall. A node where walls of different ids meet loses each wall's
+   * normal component; a node on a fixed face is fixed, and otherwise a node
+   * on a contact face is a contact node.
    */
   template <int dim>
   class DirichletConditions
@@ -71,7 +74,20 @@ namespace mpm
       /** Orthonormal; n_normals == dim means fixed. */
       std::array<Tensor<1, dim>, dim> normals;
       unsigned int                    n_normals = 0;
+      /**
+       * A contact node: fixed only while the wall pushes the material.
+       * `outward` is the wall's unit normal pointing out of the grid.
+       */
+      bool           unilateral = false;
+      Tensor<1, dim> outward;
     };
+
+    /** Whether any named boundary is a contact boundary. */
+    bool
+    has_contact() const
+    {
+      return !contact_ids.empty();
+    }
 
     /** The constraint of a node (a GridNodes local index), or nullptr. */
     const Constraint *
@@ -85,8 +101,10 @@ namespace mpm
   private:
     std::vector<types::boundary_id> fixed_ids;
     std::vector<types::boundary_id> slip_ids;
+    std::vector<types::boundary_id> contact_ids;
     std::vector<std::string>        fixed_names;
     std::vector<std::string>        slip_names;
+    std::vector<std::string>        contact_names;
 
     std::vector<int>        constraint_of_node;
     std::vector<Constraint> constraints;

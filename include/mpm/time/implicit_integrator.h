@@ -16,6 +16,7 @@
 #include <mpm/points/material_points.h>
 
 #include <memory>
+#include <set>
 #include <vector>
 
 namespace mpm
@@ -69,6 +70,39 @@ namespace mpm
     void
     setup_system();
 
+    /**
+     * Grid conditions on the nodes of active cells as constraints; contact
+     * nodes only while engaged.
+     */
+    void
+    make_constraints();
+
+    /** Call f(node, first dof, constraint) once per contact node. */
+    template <typename Function>
+    void
+    for_each_contact_node(const Function &f) const;
+
+    /**
+     * Per contact node (at its first dof, ghosted): nonzero where material
+     * touches the wall, that is a point in an adjacent cell lies closer to
+     * the wall than half its spacing. After a solve, at the points' new
+     * positions and only for points that moved towards the wall.
+     */
+    TrilinosWrappers::MPI::Vector
+    contact_gaps(const bool after_solve) const;
+
+    /**
+     * After a converged solve: release engaged contact nodes whose wall
+     * force pulls the material, and engage free ones where material closes
+     * on the wall. Returns whether the contact set changed (on any rank).
+     */
+    bool
+    update_contact_set();
+
+    /** The step's nodal v and a at the start under the current constraints. */
+    void
+    constrain_initial_conditions();
+
     /** Nodal velocity and acceleration from the points (dynamic runs). */
     void
     project_initial_conditions();
@@ -101,6 +135,13 @@ namespace mpm
 
     void
     solve_linear_system();
+
+    /**
+     * Newton-Raphson from the current displacement under the current
+     * constraints; throws RunError if it does not converge.
+     */
+    void
+    solve_newton(const double load_factor);
 
     /**
      * What the law sees of a step with deformation increment dF from F_n:
@@ -140,6 +181,7 @@ namespace mpm
     double       bossak_alpha;
     double       beta;
     double       gamma;
+    bool         lumped_mass;
     double       time_step = 0.;
 
     hp::FECollection<dim>              fe_collection;
@@ -152,10 +194,26 @@ namespace mpm
     TrilinosWrappers::MPI::Vector      correction;
     TrilinosWrappers::MPI::Vector      displacement;
     TrilinosWrappers::MPI::Vector      displacement_ghosted;
-    /** Dynamic runs: nodal velocity and acceleration at the step's start. */
+    /**
+     * Dynamic runs: nodal velocity and acceleration at the step's start, as
+     * projected from the points and then under the grid conditions.
+     */
+    TrilinosWrappers::MPI::Vector      projected_velocity;
+    TrilinosWrappers::MPI::Vector      projected_acceleration;
     TrilinosWrappers::MPI::Vector      velocity_ghosted;
     TrilinosWrappers::MPI::Vector      acceleration_ghosted;
     double                             external_force_norm = 0.;
+
+    /**
+     * Contact boundaries: f_ext - f_int - inertia before constraints (whose
+     * negative is the wall force at a held node), and the contact nodes
+     * (GridBasis node numbers, stable over the run) that hold the material.
+     * A step starts from the previous step's set.
+     */
+    TrilinosWrappers::MPI::Vector      unconstrained_residual;
+    std::set<unsigned int>             engaged_contact_nodes;
+    /** Contact nodes that changed state in this step. */
+    std::set<unsigned int>             changed_contact_nodes;
   };
 } // namespace mpm
 
