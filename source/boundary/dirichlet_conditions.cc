@@ -163,23 +163,6 @@ namespace mpm
     // grid components only for walls along the axes.
     bool slanted_contact = false;
     for (const auto &[node, faces] : boundary_nodes)
-      if (faces.contact_normal.norm() > 0.)
-        {
-          const Tensor<1, dim> n = faces.contact_normal / faces.contact_normal.norm();
-          bool along_axis = false;
-          for (unsigned int d = 0; d < dim; ++d)
-            along_axis |= std::abs(std::abs(n[d]) - 1.) < 1e-10;
-          slanted_contact |= !along_axis;
-        }
-    if (Utilities::MPI::logical_or(slanted_contact,
-                                   tria.get_communicator()))
-      throw InputError("Boundary conditions/Contact boundaries: a contact "
-                       "wall must lie along a grid axis, and its corners "
-                       "may not meet another contact wall. For an inclined "
-                       "plane, tilt the gravity instead (see "
-                       "prm/rolling_disk.prm).");
-
-    for (const auto &[node, faces] : boundary_nodes)
       {
         Constraint constraint;
         if (faces.fixed)
@@ -190,6 +173,11 @@ namespace mpm
             constraint.unilateral = true;
             constraint.outward =
               faces.contact_normal / faces.contact_normal.norm();
+            bool along_axis = false;
+            for (unsigned int d = 0; d < dim; ++d)
+              along_axis |=
+                std::abs(std::abs(constraint.outward[d]) - 1.) < 1e-10;
+            slanted_contact |= !along_axis;
           }
         else
           for (const auto &[id, sum] : faces.slip_normals)
@@ -206,6 +194,13 @@ namespace mpm
         constraint_of_node[node / n_components] = constraints.size();
         constraints.push_back(constraint);
       }
+    if (Utilities::MPI::logical_or(slanted_contact,
+                                   tria.get_communicator()))
+      throw InputError("Boundary conditions/Contact boundaries: a contact "
+                       "wall must lie along a grid axis, and its corners "
+                       "may not meet another contact wall. For an inclined "
+                       "plane, tilt the gravity instead (see "
+                       "prm/rolling_disk.prm).");
   }
 
 

@@ -205,65 +205,48 @@ namespace mpm
     constraints.reinit(relevant_dofs);
     bool unsupported_corner = false;
     DoFTools::make_hanging_node_constraints(dof_handler, constraints);
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      {
-        if (!cell->is_locally_owned() || cell->active_fe_index() != 0)
-          continue;
-        for (const unsigned int v : cell->vertex_indices())
-          {
-            const unsigned int node =
-              basis.node_of(cell->active_cell_index(), v);
-            const auto *constraint = dirichlet.constraint_of(node);
-            if (constraint == nullptr)
+    for_each_constrained_vertex([&](const auto &        cell,
+                                    const unsigned int  v,
+                                    const unsigned int  node,
+                                    const auto &        constraint) {
+      std::array<types::global_dof_index, dim> dofs;
+      for (unsigned int a = 0; a < dim; ++a)
+        dofs[a] = cell->vertex_dof_index(v, a, 0);
+      // A free contact node keeps no slip along the wall, which a body
+      // rolling without slip satisfies on the whole line of the wall; only
+      // its normal motion is free.
+      const bool free_contact =
+        constraint.unilateral && engaged_contact_nodes.count(node) == 0;
+      if (free_contact || constraint.n_normals == dim)
+        {
+          for (unsigned int a = 0; a < dim; ++a)
+            if ((!free_contact || std::abs(constraint.outward[a]) < 0.5) &&
+                !constraints.is_constrained(dofs[a]))
+              constraints.add_line(dofs[a]);
+          return;
+        }
+      for (unsigned int k = 0; k < constraint.n_normals; ++k)
+        {
+          const Tensor<1, dim> &n     = constraint.normals[k];
+          unsigned int          pivot = 0;
+          for (unsigned int a = 1; a < dim; ++a)
+            if (std::abs(n[a]) > std::abs(n[pivot]))
+              pivot = a;
+          if (constraints.is_constrained(dofs[pivot]))
+            continue;
+          const bool along_axis = std::abs(std::abs(n[pivot]) - 1.) < 1e-12;
+          if (!along_axis && constraint.n_normals > 1)
+            {
+              unsupported_corner = true;
               continue;
-            std::array<types::global_dof_index, dim> dofs;
+            }
+          constraints.add_line(dofs[pivot]);
+          if (!along_axis)
             for (unsigned int a = 0; a < dim; ++a)
-              dofs[a] = cell->vertex_dof_index(v, a, 0);
-            if (constraint->unilateral &&
-                engaged_contact_nodes.count(node) == 0)
-              {
-                // A free contact node keeps no slip along the wall, which
-                // a body rolling without slip satisfies on the whole line
-                // of the wall; only its normal motion is free.
-                for (unsigned int a = 0; a < dim; ++a)
-                  if (std::abs(constraint->outward[a]) < 0.5 &&
-                      !constraints.is_constrained(dofs[a]))
-                    constraints.add_line(dofs[a]);
-                continue;
-              }
-            if (constraint->n_normals == dim)
-              {
-                for (unsigned int a = 0; a < dim; ++a)
-                  if (!constraints.is_constrained(dofs[a]))
-                    constraints.add_line(dofs[a]);
-                continue;
-              }
-            for (unsigned int k = 0; k < constraint->n_normals; ++k)
-              {
-                const Tensor<1, dim> &n     = constraint->normals[k];
-                unsigned int          pivot = 0;
-                for (unsigned int a = 1; a < dim; ++a)
-                  if (std::abs(n[a]) > std::abs(n[pivot]))
-                    pivot = a;
-                if (constraints.is_constrained(dofs[pivot]))
-                  continue;
-                const bool along_axis =
-                  std::abs(std::abs(n[pivot]) - 1.) < 1e-12;
-                if (!along_axis && constraint->n_normals > 1)
-                  {
-                    unsupported_corner = true;
-                    continue;
-                  }
-                constraints.add_line(dofs[pivot]);
-                if (!along_axis)
-                  for (unsigned int a = 0; a < dim; ++a)
-                    if (a != pivot)
-                      constraints.add_entry(dofs[pivot],
-                                            dofs[a],
-                                            -n[a] / n[pivot]);
-              }
-          }
-      }
+              if (a != pivot)
+                constraints.add_entry(dofs[pivot], dofs[a], -n[a] / n[pivot]);
+        }
+    });
     // Decided on all ranks together, so that all stop.
     if (Utilities::MPI::logical_or(unsupported_corner,
                                    points.get_communicator()))
@@ -280,9 +263,8 @@ namespace mpm
   template <int dim>
   template <typename Function>
   void
-  ImplicitIntegrator<dim>::for_each_contact_node(const Function &f) const
+  ImplicitIntegrator<dim>::for_each_constrained_vertex(const Function &f) const
   {
-    std::set<unsigned int> visited;
     for (const auto &cell : dof_handler.active_cell_iterators())
       {
         if (!cell->is_locally_owned() || cell->active_fe_index() != 0)
@@ -291,12 +273,27 @@ namespace mpm
           {
             const unsigned int node =
               basis.node_of(cell->active_cell_index(), v);
-            const auto *constraint = dirichlet.constraint_of(node);
-            if (constraint != nullptr && constraint->unilateral &&
-                visited.insert(node).second)
-              f(node, cell->vertex_dof_index(v, 0, 0), *constraint);
+            if (const auto *constraint = dirichlet.constraint_of(node))
+              f(cell, v, node, *constraint);
           }
       }
+  }
+
+
+
+  template <int dim>
+  template <typename Function>
+  void
+  ImplicitIntegrator<dim>::for_each_contact_node(const Function &f) const
+  {
+    std::set<unsigned int> visited;
+    for_each_constrained_vertex([&](const auto &        cell,
+                                    const unsigned int  v,
+                                    const unsigned int  node,
+                                    const auto &        constraint) {
+      if (constraint.unilateral && visited.insert(node).second)
+        f(node, cell->vertex_dof_index(v, 0, 0), constraint);
+    });
   }
 
 
@@ -317,13 +314,16 @@ namespace mpm
       {
         if (!cell->is_locally_owned() || cell->active_fe_index() != 0)
           continue;
-        std::vector<unsigned int> contact_vertices;
+        std::vector<
+          std::pair<unsigned int,
+                    const typename DirichletConditions<dim>::Constraint *>>
+          contact_vertices;
         for (const unsigned int v : cell->vertex_indices())
           {
             const auto *c = dirichlet.constraint_of(
               basis.node_of(cell->active_cell_index(), v));
             if (c != nullptr && c->unilateral)
-              contact_vertices.push_back(v);
+              contact_vertices.emplace_back(v, c);
           }
         if (contact_vertices.empty())
           continue;
@@ -346,10 +346,8 @@ namespace mpm
                   for (unsigned int a = 0; a < dim; ++a)
                     x[a] += support.N[i] * displacement_ghosted(dofs[i * dim + a]);
               }
-            for (const unsigned int v : contact_vertices)
+            for (const auto &[v, c] : contact_vertices)
               {
-                const auto *c = dirichlet.constraint_of(
-                  basis.node_of(cell->active_cell_index(), v));
                 const double gap_before =
                   (cell->vertex(v) - particle.get_location()) * c->outward;
                 const double gap = (cell->vertex(v) - x) * c->outward;

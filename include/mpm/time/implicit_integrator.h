@@ -77,6 +77,14 @@ namespace mpm
     void
     make_constraints();
 
+    /**
+     * Call f(cell, vertex, node, constraint) for each vertex with a grid
+     * condition of each locally owned cell that holds points.
+     */
+    template <typename Function>
+    void
+    for_each_constrained_vertex(const Function &f) const;
+
     /** Call f(node, first dof, constraint) once per contact node. */
     template <typename Function>
     void
