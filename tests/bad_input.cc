@@ -107,6 +107,18 @@ main(int argc, char **argv)
            with({"Time stepping/Scheme=quasi-static",
                  "Boundary conditions/Fixed boundaries=",
                  "Boundary conditions/Contact boundaries=bottom, left"}));
+  run_case("both a total force and a traction",
+           with({"Time stepping/Scheme=quasi-static",
+                 "Loads/Total force=0, -1",
+                 "Loads/Traction=0, -1",
+                 "Loads/Region lower corner=0.25, 0.4",
+                 "Loads/Region upper corner=0.75, 0.5"}));
+  run_case("load factor that is not an expression",
+           with({"Time stepping/Scheme=quasi-static",
+                 "Loads/Load factor=t*(2"}));
+  run_case("load factor that is not finite",
+           with({"Time stepping/Scheme=quasi-static",
+                 "Loads/Load factor=sqrt(-1-t)"}));
   run_case("quasi-static loads on no point",
            with({"Time stepping/Scheme=quasi-static",
                  "Loads/Total force=0, -1",

@@ -5,7 +5,9 @@
 // - the vibrating bar (prm/vibrating_bar.prm) with a time step of 0.1 s,
 //   twice the explicit one, stays within 3 % of the analytical
 //   centre-of-mass velocity over 40 s; with Bossak's alpha = -0.3 it loses
-//   energy (numerical damping) and still stays within 3 %.
+//   energy (numerical damping) and still stays within 3 %;
+// - the same point pushed by a point load instead of gravity follows
+//   y0 - F t^2 / (2 m): the initial acceleration includes the load.
 // Quasi-static, on the oedometer of prm/oedometer.prm (neo-Hookean,
 // nu = 0, rollers, fixed base, load on the top row of points):
 // - the first load step, before any point crosses a cell, is homogeneous
@@ -16,7 +18,11 @@
 //   (asserted from the printed iterations), in every load step;
 // - with full cells integrated by cell volume (the default), every load
 //   step to eps_L = -0.5 stays within 1 % of the closed form, however the
-//   points have crossed cells;
+//   points have crossed cells (on cells half as tall as wide, so that the
+//   traction's face area is not the square root of the point volume); so
+//   does the same load given as a total
+//   force instead of a traction and ramped with t^2 instead of t (both
+//   compared with the load of each step);
 // - the cantilever under self-weight ([I] 5.1) with h = 0.5 m: run
 //   linearly (one load step, one iteration) its tip deflects by the linear
 //   bilinear-FE value 0.60226 m of benchmarks.md section 1 (the points sit
@@ -37,6 +43,7 @@
 #include <mpm/core/application.h>
 
 #include <cmath>
+#include <functional>
 #include <iostream>
 #include <sstream>
 
@@ -44,10 +51,14 @@
 
 using namespace dealii;
 
-/** Largest relative error of E sinh(eps_L) against the applied stress. */
+/**
+ * Largest relative error of E sinh(eps_L) against the applied stress, the
+ * full traction times the load factor at each time.
+ */
 double
 oedometer_error(std::map<std::string, std::vector<double>> &csv,
-                const double full_force_over_width)
+                const double                                full_traction,
+                const std::function<double(double)> &       load_factor)
 {
   const double E     = 1e6;
   double       error = 0.;
@@ -56,7 +67,7 @@ oedometer_error(std::map<std::string, std::vector<double>> &csv,
       const double eps_L =
         std::log((csv["point1_y"][n] - csv["point0_y"][n]) /
                  (csv["point1_y"][0] - csv["point0_y"][0]));
-      const double sigma = csv["time"][n] * full_force_over_width;
+      const double sigma = load_factor(csv["time"][n]) * full_traction;
       error = std::max(error,
                        std::abs(E * std::sinh(eps_L) - sigma) / std::abs(sigma));
     }
@@ -85,6 +96,31 @@ main(int argc, char **argv)
     mpm_tests::check("Newmark free fall: y = y0 - g t^2 / 2, v = -g t to "
                      "1e-12",
                      error < 1e-12);
+  }
+
+  // The same point pushed by a point load of 1 N/m instead of gravity: the
+  // initial acceleration includes the load, so y = y0 - t^2 / (2 m).
+  {
+    auto csv = mpm_tests::run_scene("scenes/free_fall.prm",
+                                    "newmark-point-load",
+                                    {"Time stepping/Scheme=Newmark",
+                                     "Gravity=0, 0",
+                                     "Loads/Total force=0, -1",
+                                     "Loads/Region lower corner=0.5, 0.75",
+                                     "Loads/Region upper corner=0.75, 1"});
+    const double a     = 1. / csv["mass"][0];
+    double       error = 0.;
+    for (unsigned int n = 0; n < csv["time"].size(); ++n)
+      {
+        const double t = csv["time"][n];
+        error          = std::max(
+          {error,
+           std::abs(csv["point0_y"][n] - (csv["point0_y"][0] - a * t * t / 2)),
+           std::abs(csv["point0_vy"][n] + a * t)});
+      }
+    mpm_tests::check("Newmark under a point load F: y = y0 - F t^2 / (2 m) "
+                     "to 1e-12",
+                     error < 1e-12 * std::max(1., a));
   }
 
   // Newmark vibrating bar.
@@ -126,7 +162,7 @@ main(int argc, char **argv)
   }
 
   const std::string scene = "../prm/oedometer.prm";
-  const double      E = 1e6, width = 0.1, full_force = -52109.53;
+  const double      E = 1e6, full_traction = -521095.3;
 
   // First load step only: 10 % of the load.
   {
@@ -135,11 +171,11 @@ main(int argc, char **argv)
       "first-step",
       {"Time stepping/End time=0.1",
        "Time stepping/Load steps=1",
-       "Loads/Total force=0, " + std::to_string(0.1 * full_force)});
+       "Loads/Traction=0, " + std::to_string(0.1 * full_traction)});
     const double eps_L =
       std::log((csv["point1_y"][1] - csv["point0_y"][1]) /
                (csv["point1_y"][0] - csv["point0_y"][0]));
-    const double sigma = 0.1 * full_force / width;
+    const double sigma = 0.1 * full_traction;
     mpm_tests::check("first step: E sinh(eps_L) = applied stress to 1e-8",
                      std::abs(E * std::sinh(eps_L) - sigma) <
                        1e-8 * std::abs(sigma));
@@ -199,12 +235,34 @@ main(int argc, char **argv)
                      drift < 0.01);
   }
 
-  // The whole oedometer, ten load steps to eps_L = -0.5.
+  // The whole oedometer, ten load steps to eps_L = -0.5, on cells half as
+  // tall as wide: each point of the top row carries a face of 0.05 m, not
+  // the square root of its volume.
   {
-    auto csv = mpm_tests::run_scene(scene, "full");
+    auto csv = mpm_tests::run_scene(
+      scene, "full", {"Grid/Arguments=1, 20 : 0, 0 : 0.1, 1.0 : true"});
     mpm_tests::check("every load step to eps_L = -0.5 within 1 % of E "
                      "sinh(eps_L)",
-                     oedometer_error(csv, full_force / width) < 0.01);
+                     oedometer_error(csv, full_traction, [](double t) {
+                       return t;
+                     }) < 0.01);
+  }
+
+  // The same traction given as a total force on the width of 0.1 m, and
+  // ramped by a load factor t^2 instead of t: the same closed form, at the
+  // load of each step.
+  {
+    auto csv = mpm_tests::run_scene(
+      scene,
+      "force-ramp",
+      {"Loads/Traction=",
+       "Loads/Total force=0, " + std::to_string(0.1 * full_traction),
+       "Loads/Load factor=t^2"});
+    mpm_tests::check("total force ramped with t^2: every load step within "
+                     "1 % of E sinh(eps_L)",
+                     oedometer_error(csv, full_traction, [](double t) {
+                       return t * t;
+                     }) < 0.01);
   }
 
   // Five load steps to eps_L = -0.26, Newton's ratios from the log.
@@ -215,7 +273,7 @@ main(int argc, char **argv)
       {"--set", "Output/Directory=newton", "--set",
        "Output/Write ParaView output=false", "--set",
        "Time stepping/End time=0.5", "--set", "Time stepping/Load steps=5",
-       "--set", "Loads/Total force=0, " + std::to_string(0.5 * full_force),
+       "--set", "Loads/Traction=0, " + std::to_string(0.5 * full_traction),
        mpm_tests::source_file(scene)});
     std::cout.rdbuf(old);
     deallog << "five steps: exit code " << code << std::endl;

@@ -32,12 +32,17 @@ namespace mpm
     for (unsigned int a = 0; a < dim; ++a)
       for (unsigned int b = 0; b < dim; ++b)
         sigma[a][b] = stress[a][b];
+    Tensor<1, dim> external = m * gravity;
+    if (points.has_implicit_fields())
+      for (unsigned int d = 0; d < dim; ++d)
+        external[d] += p[points.point_load_index() + d];
+    external *= load_factor;
     for (unsigned int i = 0; i < support.n_nodes; ++i)
       {
         const Tensor<1, dim> internal = volume * (sigma * support.grad_N[i]);
         double *             f = v + support.nodes[i] + NodalLayout::force;
         for (unsigned int d = 0; d < dim; ++d)
-          f[d] += support.N[i] * m * gravity[d] - internal[d];
+          f[d] += support.N[i] * external[d] - internal[d];
       }
   }
 

@@ -67,9 +67,10 @@ namespace mpm
   {
     const unsigned int n = prm.get_integer("Points per cell direction");
     if (prm.get("Point placement") == "Gauss")
-      placement = QGauss<dim>(n);
+      placement_1d = QGauss<1>(n);
     else
-      placement = QIterated<dim>(QMidpoint<1>(), n);
+      placement_1d = QIterated<1>(QMidpoint<1>(), n);
+    placement = Quadrature<dim>(placement_1d);
     const std::string shape_name = prm.get("Shape");
     if (shape_name == "box")
       {
@@ -131,28 +132,10 @@ namespace mpm
       throw InputError(section_path + "/Initial velocity = '" +
                        prm.get("Initial velocity") + "' must have " +
                        std::to_string(dim) + " ';'-separated components.");
-    velocity = std::make_unique<FunctionParser<dim>>(dim);
-    // muparser writes its own report of a bad expression to std::cerr; the
-    // message below says the same once, naming the entry.
-    std::ostringstream    parser_report;
-    std::streambuf *const cerr_buffer = std::cerr.rdbuf(parser_report.rdbuf());
-    try
-      {
-        velocity->initialize(FunctionParser<dim>::default_variable_names(),
-                             expressions,
-                             {{"pi", numbers::PI}});
-        velocity->value(center, 0);
-        std::cerr.rdbuf(cerr_buffer);
-      }
-    catch (const ExceptionBase &e)
-      {
-        std::cerr.rdbuf(cerr_buffer);
-        std::ostringstream info;
-        e.print_info(info);
-        throw InputError(section_path + "/Initial velocity = '" +
-                         prm.get("Initial velocity") +
-                         "' is not a valid expression: " + info.str());
-      }
+    velocity = parse_function<dim>(expressions,
+                                   FunctionParser<dim>::default_variable_names(),
+                                   center,
+                                   section_path + "/Initial velocity");
   }
 
 

@@ -4,6 +4,8 @@
 #include <mpm/core/input_error.h>
 #include <mpm/core/parse.h>
 
+#include <cmath>
+
 namespace mpm
 {
   template <int dim>
@@ -15,33 +17,84 @@ namespace mpm
                       "Force at full load, one component per dimension, "
                       "spread over the points that start inside the region "
                       "in proportion to their volume [N, N/m in 2D]. Empty: "
-                      "no load.");
+                      "no force. Give this or Traction, not both.");
+    prm.declare_entry("Traction", "", Patterns::Anything(),
+                      "Traction at full load, one component per dimension "
+                      "[Pa], on the surface that the points starting inside "
+                      "the region stand for: each carries the face of its "
+                      "initial box normal to Traction normal, V_p / l_p "
+                      "with l_p its edge along that axis, so the region "
+                      "should hold one layer of points. A dead load (fixed "
+                      "direction and reference area). Empty: no traction.");
+    prm.declare_entry("Traction normal", "y", Patterns::Selection("x|y|z"),
+                      "The axis normal to the loaded surface.");
     prm.declare_entry("Region lower corner", "", Patterns::Anything(),
                       "Lower corner of the box that selects the loaded "
                       "points.");
     prm.declare_entry("Region upper corner", "", Patterns::Anything(),
                       "Upper corner of the box that selects the loaded "
                       "points.");
+    prm.declare_entry("Load factor", "", Patterns::Anything(),
+                      "Factor on the loads above and on gravity, a function "
+                      "of the time t (the pseudo-time of the quasi-static "
+                      "scheme), e.g. 'min(2*t, 1)'. Empty: t / End time "
+                      "for the quasi-static scheme, 1 for the others.");
     prm.leave_subsection();
   }
 
 
 
   template <int dim>
-  PointLoads<dim>::PointLoads(ParameterHandler &prm)
+  PointLoads<dim>::PointLoads(ParameterHandler &prm,
+                              const bool        ramped,
+                              const double      end_time)
+    : ramped(ramped)
+    , end_time(end_time)
   {
     prm.enter_subsection("Loads");
-    const std::string force = prm.get("Total force");
-    if (!force.empty())
+    const std::string force    = prm.get("Total force");
+    const std::string traction = prm.get("Traction");
+    if (!force.empty() && !traction.empty())
+      throw InputError("Loads: give Total force or Traction, not both.");
+    if (!force.empty() || !traction.empty())
       {
-        active       = true;
-        total_force  = parse_point<dim>(force, "Loads/Total force");
+        active      = true;
+        is_traction = !traction.empty();
+        load        = is_traction ?
+                        parse_point<dim>(traction, "Loads/Traction") :
+                        parse_point<dim>(force, "Loads/Total force");
+        traction_normal = prm.get("Traction normal")[0] - 'x';
+        if (traction_normal >= dim)
+          throw InputError("Loads/Traction normal = z needs Dimension = 3.");
         lower_corner = parse_point<dim>(prm.get("Region lower corner"),
                                         "Loads/Region lower corner");
         upper_corner = parse_point<dim>(prm.get("Region upper corner"),
                                         "Loads/Region upper corner");
       }
+    const std::string factor = prm.get("Load factor");
+    if (!factor.empty())
+      load_factor_function =
+        parse_function<1>({factor}, "t", Point<1>(), "Loads/Load factor");
     prm.leave_subsection();
+    // A factor that is not finite somewhere in the run is an input error;
+    // find it now rather than at that step.
+    for (unsigned int k = 0; k <= 100; ++k)
+      load_factor(k * end_time / 100.);
+  }
+
+
+
+  template <int dim>
+  double
+  PointLoads<dim>::load_factor(const double t) const
+  {
+    if (!load_factor_function)
+      return ramped ? t / end_time : 1.;
+    const double factor = load_factor_function->value(Point<1>(t));
+    if (!std::isfinite(factor))
+      throw InputError("Loads/Load factor is not finite at t = " +
+                       std::to_string(t) + ".");
+    return factor;
   }
 
 
@@ -72,9 +125,12 @@ namespace mpm
       if (inside(particle.get_location()))
         {
           const ArrayView<double> p = particle.get_properties();
+          const double            V = p[Layout::reference_volume];
+          const double            share =
+            is_traction ? V / p[Layout::reference_size + traction_normal] :
+                          V / volume;
           for (unsigned int d = 0; d < dim; ++d)
-            p[points.point_load_index() + d] =
-              total_force[d] * p[Layout::reference_volume] / volume;
+            p[points.point_load_index() + d] = load[d] * share;
         }
   }
 

@@ -53,7 +53,8 @@ namespace mpm
                       "explicit: dynamic explicit MPM with the Update "
                       "scheme below. quasi-static: equilibrium in Load steps "
                       "over the pseudo-time End time, loads and gravity "
-                      "ramped with t / End time, solved by Newton (see "
+                      "ramped with Loads/Load factor (t / End time unless "
+                      "given), solved by Newton (see "
                       "Newton). Newmark: implicit dynamic MPM with the fixed "
                       "Time step, solved by Newton (see Newton, Newmark).");
     prm.declare_entry("Load steps", "10", Patterns::Integer(1),
@@ -199,14 +200,14 @@ namespace mpm
                                                    n_internal,
                                                    scheme_name != "explicit");
     points->seed(bodies, materials, basis);
-    {
-      const PointLoads<dim> loads(prm);
-      if (loads.is_active() && scheme_name == "explicit")
-        throw InputError("Loads are applied by the quasi-static and Newmark "
-                         "schemes only; Time stepping/Scheme = explicit would "
-                         "ignore them.");
-      loads.apply(*points);
-    }
+    loads = std::make_unique<PointLoads<dim>>(prm,
+                                              scheme_name == "quasi-static",
+                                              end_time);
+    if (loads->is_active() && scheme_name == "explicit")
+      throw InputError("Loads/Total force and Loads/Traction are applied by "
+                       "the quasi-static and Newmark schemes only; Time "
+                       "stepping/Scheme = explicit would ignore them.");
+    loads->apply(*points);
     if (points->n_global_points() == 0)
       throw InputError("No body has a material point inside the grid: check "
                        "the shapes in Bodies against Grid/Arguments.");
@@ -368,6 +369,7 @@ namespace mpm
   double
   Simulator<dim>::explicit_step()
   {
+    transfer->set_load_factor(loads->load_factor(time));
     const auto report = integrator->step(dt);
     check_step(report, dt);
     return Utilities::MPI::max(report.max_speed, communicator);
@@ -384,18 +386,13 @@ namespace mpm
       {
         try
           {
+            const double load_factor = loads->load_factor(time + dt);
             if (dynamic_implicit)
-              {
-                pcout << "  time step " << step + 1 << ": t = " << time + dt
-                      << std::endl;
-                implicit->step(1., dt);
-              }
+              pcout << "  time step " << step + 1 << ": t = " << time + dt;
             else
-              {
-                pcout << "  load step " << step + 1 << ": load factor "
-                      << (time + dt) / end_time << std::endl;
-                implicit->step((time + dt) / end_time, dt);
-              }
+              pcout << "  load step " << step + 1 << ": t = " << time + dt;
+            pcout << ", load factor " << load_factor << std::endl;
+            implicit->step(load_factor, dt);
             return;
           }
         catch (const RunError &e)
@@ -435,6 +432,7 @@ namespace mpm
         // Newmark needs the initial acceleration: M a = f_ext - f_int with
         // the lumped mass, from the same projection the explicit scheme
         // uses.
+        transfer->set_load_factor(loads->load_factor(0.));
         transfer->project_mass_momentum(true);
         transfer->compute_nodal_acceleration(0., false);
         transfer->for_each_point(
@@ -460,14 +458,17 @@ namespace mpm
     double next_time_series = time_series_interval;
 
     const double time_tolerance = 1e-12 * end_time;
+    const double implicit_step_size =
+      dynamic_implicit ? fixed_time_step : end_time / n_load_steps;
+    // After a cut, the step grows back by doubling, one success at a time.
+    double next_implicit_step = implicit_step_size;
     while (time < end_time - time_tolerance)
       {
         if (implicit)
           {
-            dt = std::min(dynamic_implicit ? fixed_time_step :
-                                             end_time / n_load_steps,
-                          end_time - time);
+            dt = std::min(next_implicit_step, end_time - time);
             implicit_step();
+            next_implicit_step = std::min(implicit_step_size, 2. * dt);
           }
         else
           {

@@ -5,6 +5,7 @@
 #include <mpm/points/material_points.h>
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 
 namespace mpm
@@ -16,6 +17,8 @@ namespace mpm
     std::vector<std::string> n(n_properties(n_internal_variables));
     n[mass]             = "mass";
     n[reference_volume] = "reference_volume";
+    for (unsigned int d = 0; d < dim; ++d)
+      n[reference_size + d] = "reference_size";
     for (unsigned int d = 0; d < dim; ++d)
       n[velocity + d] = "velocity";
     const char *axes = "xyz";
@@ -83,7 +86,8 @@ namespace mpm
   std::vector<unsigned int>
   MaterialPoints<dim>::vector_properties() const
   {
-    std::vector<unsigned int> vectors = {Layout::velocity};
+    std::vector<unsigned int> vectors = {Layout::reference_size,
+                                         Layout::velocity};
     if (implicit_fields)
       {
         vectors.push_back(acceleration_index());
@@ -107,6 +111,7 @@ namespace mpm
       Point<dim>                                       reference;
       typename Triangulation<dim>::active_cell_iterator cell;
       double                                           volume;
+      Tensor<1, dim>                                   size;
       unsigned int                                     body;
     };
     std::vector<Candidate> candidates;
@@ -134,7 +139,19 @@ namespace mpm
                 const double volume =
                   basis.volume_factor(cell->active_cell_index(), reference) *
                   placement.weight(k);
-                candidates.push_back({x, reference, cell, volume, b});
+                // The cell's extent times the 1D weight in each direction,
+                // scaled so that the edges multiply to the volume (exact on
+                // a Cartesian cell).
+                Tensor<1, dim> size;
+                double         box = 1.;
+                for (unsigned int d = 0; d < dim; ++d)
+                  {
+                    size[d] = cell->extent_in_direction(d) *
+                              bodies[b].placement_weight_1d(k, d);
+                    box *= size[d];
+                  }
+                size *= std::pow(volume / box, 1. / dim);
+                candidates.push_back({x, reference, cell, volume, size, b});
               }
           }
       }
@@ -155,6 +172,8 @@ namespace mpm
         std::fill(properties.begin(), properties.end(), 0.);
         properties[Layout::mass]             = material.density() * c.volume;
         properties[Layout::reference_volume] = c.volume;
+        for (unsigned int d = 0; d < dim; ++d)
+          properties[Layout::reference_size + d] = c.size[d];
         const Tensor<1, dim> v               = bodies[c.body].initial_velocity(c.x);
         for (unsigned int d = 0; d < dim; ++d)
           {

@@ -52,8 +52,19 @@ namespace mpm
     }
 
     /**
+     * The factor on gravity and point loads in the forces projected from
+     * now on (1 until set).
+     */
+    void
+    set_load_factor(const double factor)
+    {
+      load_factor = factor;
+    }
+
+    /**
      * Lumped mass and momentum on the nodes, and, if `with_force`, the
-     * internal force -sum V_p sigma_p grad N plus gravity sum N m_p g.
+     * internal force -sum V_p sigma_p grad N plus the external force
+     * sum N (m_p g + f_p) times the load factor (f_p: point loads).
      */
     void
     project_mass_momentum(const bool with_force);
@@ -62,7 +73,7 @@ namespace mpm
     void
     project_momentum();
 
-    /** Internal and gravity force alone, from the current stresses. */
+    /** Internal and external force alone, from the current stresses. */
     void
     project_force();
 
@@ -112,6 +123,7 @@ namespace mpm
     GridNodes<dim> &                nodes;
     const DirichletConditions<dim> &dirichlet;
     const Tensor<1, dim>            gravity;
+    double                          load_factor = 1.;
   };
 } // namespace mpm
 

@@ -61,6 +61,20 @@ namespace mpm
       return placement;
     }
 
+    /**
+     * The 1D weight in direction d of the k-th placement point: the share
+     * of the cell's extent in d that the point stands for.
+     */
+    double
+    placement_weight_1d(const unsigned int k, const unsigned int d) const
+    {
+      // The tensor-product ordering of deal.II: x runs fastest.
+      unsigned int index = k;
+      for (unsigned int e = 0; e < d; ++e)
+        index /= placement_1d.size();
+      return placement_1d.weight(index % placement_1d.size());
+    }
+
   private:
     enum class Shape
     {
@@ -77,6 +91,7 @@ namespace mpm
     double                  radius = 0.;
     std::vector<Point<dim>> polygon;
     unsigned int            material = 0;
+    Quadrature<1>           placement_1d;
     Quadrature<dim>         placement;
     std::unique_ptr<FunctionParser<dim>> velocity;
   };

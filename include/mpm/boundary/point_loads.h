@@ -1,20 +1,25 @@
 #ifndef mpm_boundary_point_loads_h
 #define mpm_boundary_point_loads_h
 
+#include <deal.II/base/function_parser.h>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/point.h>
 
 #include <mpm/points/material_points.h>
+
+#include <memory>
 
 namespace mpm
 {
   using namespace dealii;
 
   /**
-   * A total force spread over the material points that start inside a box,
-   * in proportion to their volume: a surface load on the top layer of an
-   * oedometer sample, or a tip load on a cantilever. The quasi-static scheme
-   * ramps it with the load factor.
+   * A load on the material points that start inside a box: either a total
+   * force spread over them in proportion to their volume (a tip load on a
+   * cantilever), or a traction on the surface they stand for, each point
+   * carrying the face of its initial box normal to a given axis (a
+   * pressure on the top layer of an oedometer sample). Both are dead
+   * loads. The load factor, a function of time, scales them and gravity.
    */
   template <int dim>
   class PointLoads
@@ -23,8 +28,12 @@ namespace mpm
     static void
     declare_parameters(ParameterHandler &prm);
 
-    /** Parse the `Loads` subsection at top level. */
-    explicit PointLoads(ParameterHandler &prm);
+    /**
+     * Parse the `Loads` subsection at top level. `ramped` is the default
+     * of the load factor when none is given: t / end_time if true (the
+     * quasi-static pseudo-time), 1 otherwise.
+     */
+    PointLoads(ParameterHandler &prm, bool ramped, double end_time);
 
     /** Whether the scene has a load. */
     bool
@@ -33,15 +42,32 @@ namespace mpm
       return active;
     }
 
-    /** Write each point's share of the load into its properties. */
+    /** Whether the user gave a load factor function. */
+    bool
+    has_load_factor_function() const
+    {
+      return static_cast<bool>(load_factor_function);
+    }
+
+    /** The factor on loads and gravity at time t. */
+    double
+    load_factor(double t) const;
+
+    /** Write each point's share of the full load into its properties. */
     void
     apply(MaterialPoints<dim> &points) const;
 
   private:
     bool           active = false;
+    bool           is_traction = false;
+    unsigned int   traction_normal = 1;
     Point<dim>     lower_corner;
     Point<dim>     upper_corner;
-    Tensor<1, dim> total_force;
+    /** Total force [N] or traction [Pa], at full load. */
+    Tensor<1, dim> load;
+    bool           ramped;
+    double         end_time;
+    std::unique_ptr<FunctionParser<1>> load_factor_function;
   };
 } // namespace mpm
 

@@ -1,11 +1,15 @@
 #ifndef mpm_core_parse_h
 #define mpm_core_parse_h
 
+#include <deal.II/base/function_parser.h>
 #include <deal.II/base/point.h>
 #include <deal.II/base/utilities.h>
 
 #include <mpm/core/input_error.h>
 
+#include <iostream>
+#include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -56,6 +60,44 @@ namespace mpm
       if (!part.empty())
         points.push_back(parse_point<dim>(part, entry));
     return points;
+  }
+
+  /**
+   * A function of `variables` (e.g. "x,y,t") with one expression per
+   * component, evaluated once at `probe` so that a bad expression fails
+   * here, with `entry` named in the message, rather than mid-run.
+   */
+  template <int dim>
+  std::unique_ptr<FunctionParser<dim>>
+  parse_function(const std::vector<std::string> &expressions,
+                 const std::string &             variables,
+                 const Point<dim> &              probe,
+                 const std::string &             entry)
+  {
+    auto function =
+      std::make_unique<FunctionParser<dim>>(expressions.size());
+    // muparser writes its own report of a bad expression to std::cerr; the
+    // message below says the same once, naming the entry.
+    std::ostringstream    parser_report;
+    std::streambuf *const cerr_buffer = std::cerr.rdbuf(parser_report.rdbuf());
+    try
+      {
+        function->initialize(variables, expressions, {{"pi", numbers::PI}});
+        function->value(probe, 0);
+        std::cerr.rdbuf(cerr_buffer);
+      }
+    catch (const ExceptionBase &e)
+      {
+        std::cerr.rdbuf(cerr_buffer);
+        std::ostringstream info;
+        e.print_info(info);
+        std::string text;
+        for (const auto &expression : expressions)
+          text += (text.empty() ? "" : "; ") + expression;
+        throw InputError(entry + " = '" + text +
+                         "' is not a valid expression: " + info.str());
+      }
+    return function;
   }
 } // namespace mpm
 

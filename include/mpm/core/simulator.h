@@ -12,6 +12,7 @@
 #include <mpm/basis/grid_basis.h>
 #include <mpm/bodies/body.h>
 #include <mpm/boundary/dirichlet_conditions.h>
+#include <mpm/boundary/point_loads.h>
 #include <mpm/grid/background_grid.h>
 #include <mpm/materials/material.h>
 #include <mpm/output/time_series.h>
@@ -104,6 +105,7 @@ namespace mpm
     std::vector<std::unique_ptr<Material>>    materials;
     std::vector<Body<dim>>                    bodies;
     std::unique_ptr<MaterialPoints<dim>>      points;
+    std::unique_ptr<PointLoads<dim>>          loads;
     std::unique_ptr<GridTransfer<dim>>        transfer;
     std::unique_ptr<ExplicitIntegrator<dim>>  integrator;
     std::unique_ptr<ImplicitIntegrator<dim>>  implicit;

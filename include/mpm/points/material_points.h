@@ -87,6 +87,13 @@ namespace mpm
       return n_internal;
     }
 
+    /** Whether the points carry the implicit fields (acceleration, load). */
+    bool
+    has_implicit_fields() const
+    {
+      return implicit_fields;
+    }
+
     /** Index of the acceleration (implicit fields only). */
     unsigned int
     acceleration_index() const

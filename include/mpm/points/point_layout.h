@@ -27,7 +27,9 @@ namespace mpm
   {
     static constexpr unsigned int mass                 = 0;
     static constexpr unsigned int reference_volume     = 1;
-    static constexpr unsigned int velocity             = 2;
+    /** Edge lengths of the box the point stands for, at the start. */
+    static constexpr unsigned int reference_size       = 2;
+    static constexpr unsigned int velocity             = reference_size + dim;
     static constexpr unsigned int deformation_gradient = velocity + dim;
     static constexpr unsigned int stress = deformation_gradient + dim * dim;
     static constexpr unsigned int work_density       = stress + 6;
