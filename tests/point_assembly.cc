@@ -90,9 +90,11 @@ test(const std::string &model)
     k.F_old = PointLayout<dim>::embed(F_n, 1.);
     k.F_new = PointLayout<dim>::embed(dF * F_n, 1.);
     k.dt    = 1.;
-    SymmetricTensor<2, 3> stress;
+    const SymmetricTensor<2, 3> old_stress;
+    SymmetricTensor<2, 3>       stress = old_stress;
     material->update_stress(k, stress, {});
-    const SymmetricTensor<4, 3> c = material->spatial_tangent(k, stress, {});
+    const SymmetricTensor<4, 3> c =
+      material->spatial_tangent(k, old_stress, {});
     PointAssembly<dim>::internal_force(support,
                                        dF,
                                        determinant(dF * F_n) * V0,

@@ -32,11 +32,13 @@ namespace mpm
 
 
   SymmetricTensor<4, 3>
-  Hencky::spatial_tangent(const StepKinematics &kinematics,
-                          const SymmetricTensor<2, 3> &,
-                          const ArrayView<const double> &internal_variables)
+  Hencky::spatial_tangent(const StepKinematics &         kinematics,
+                          const SymmetricTensor<2, 3> &  old_stress,
+                          const ArrayView<const double> &old_internal_variables)
     const
   {
-    return numerical_spatial_tangent(kinematics, internal_variables);
+    return numerical_spatial_tangent(kinematics,
+                                     old_stress,
+                                     old_internal_variables);
   }
 } // namespace mpm

@@ -30,11 +30,15 @@ namespace mpm
 
 
   SymmetricTensor<4, 3>
-  LinearElastic::spatial_tangent(const StepKinematics &,
-                                 const SymmetricTensor<2, 3> &,
-                                 const ArrayView<const double> &) const
+  LinearElastic::spatial_tangent(
+    const StepKinematics &         kinematics,
+    const SymmetricTensor<2, 3> &  old_stress,
+    const ArrayView<const double> &old_internal_variables) const
   {
-    const SymmetricTensor<2, 3> I = unit_symmetric_tensor<3>();
-    return lambda * outer_product(I, I) + 2. * mu * identity_tensor<3>();
+    // The Jaumann update depends on the old stress and the spin; its
+    // consistent tangent by differences of the update itself.
+    return numerical_spatial_tangent(kinematics,
+                                     old_stress,
+                                     old_internal_variables);
   }
 } // namespace mpm

@@ -81,17 +81,22 @@ namespace mpm
   SymmetricTensor<4, 3>
   Material::numerical_spatial_tangent(
     const StepKinematics &         kinematics,
-    const ArrayView<const double> &internal_variables) const
+    const SymmetricTensor<2, 3> &  old_stress,
+    const ArrayView<const double> &old_internal_variables) const
   {
-    const double h = 1e-6;
+    const double        h = 1e-6;
     std::vector<double> internal;
-    // Kirchhoff stress of the law at F (from a zero start stress, which
-    // laws whose stress depends on F alone ignore).
+    const Tensor<2, 3>  F_old_inverse = invert(kinematics.F_old);
+    // Kirchhoff stress of the step from the old state to F.
     auto kirchhoff = [&](const Tensor<2, 3> &F) {
       StepKinematics k = kinematics;
       k.F_new          = F;
-      internal.assign(internal_variables.begin(), internal_variables.end());
-      SymmetricTensor<2, 3> sigma;
+      k.velocity_gradient =
+        (F * F_old_inverse - Tensor<2, 3>(unit_symmetric_tensor<3>())) /
+        kinematics.dt;
+      internal.assign(old_internal_variables.begin(),
+                      old_internal_variables.end());
+      SymmetricTensor<2, 3> sigma = old_stress;
       update_stress(k,
                     sigma,
                     ArrayView<double>(internal.data(), internal.size()));

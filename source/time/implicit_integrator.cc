@@ -545,22 +545,21 @@ namespace mpm
             const StepKinematics k   = step_kinematics(dF, F_n);
             const Material &material =
               *materials[static_cast<unsigned int>(p[Layout::material_id])];
-            SymmetricTensor<2, 3> stress = Layout::get_stress(p);
-            internal.assign(&p[Layout::internal_variables],
-                            &p[Layout::internal_variables] +
-                              material.n_internal_variables());
-            material.update_stress(k,
-                                   stress,
-                                   ArrayView<double>(internal.data(),
-                                                     internal.size()));
+            const SymmetricTensor<2, 3> old_stress = Layout::get_stress(p);
+            const ArrayView<const double> old_internal(
+              &p[Layout::internal_variables], material.n_internal_variables());
+            SymmetricTensor<2, 3> stress = old_stress;
+            internal.assign(old_internal.begin(), old_internal.end());
             if (!(determinant(k.F_new) > 0.))
               inverted = true;
+            else
+              material.update_stress(k,
+                                     stress,
+                                     ArrayView<double>(internal.data(),
+                                                       internal.size()));
             SymmetricTensor<4, 3> c;
-            if (with_tangent)
-              c = material.spatial_tangent(
-                k,
-                stress,
-                ArrayView<const double>(internal.data(), internal.size()));
+            if (with_tangent && !inverted)
+              c = material.spatial_tangent(k, old_stress, old_internal);
             PointAssembly<dim>::internal_force(
               support,
               dF,
@@ -859,7 +858,7 @@ namespace mpm
             p[Layout::work_density] +=
               0.5 *
               (determinant(F_n) * stress_old + determinant(F) * stress) *
-              symmetrize(k.velocity_gradient);
+              symmetrize(k.velocity_gradient) * k.dt;
             Layout::set_deformation_gradient(p, F);
             Layout::set_stress(p, stress);
 

@@ -27,8 +27,8 @@ namespace mpm
     /** By central differences of the stress (numerical_spatial_tangent). */
     SymmetricTensor<4, 3>
     spatial_tangent(const StepKinematics &         kinematics,
-                    const SymmetricTensor<2, 3> &  stress,
-                    const ArrayView<const double> &internal_variables)
+                    const SymmetricTensor<2, 3> &  old_stress,
+                    const ArrayView<const double> &old_internal_variables)
       const override;
   };
 } // namespace mpm

@@ -9,9 +9,10 @@ namespace mpm
    * Hypoelastic isotropic law integrated with the Jaumann rate, as in [W]:
    * sigma += dt (lambda tr(D) I + 2 mu D + W sigma - sigma W),
    * with D and W the symmetric and skew parts of the velocity gradient.
-   * Its tangent is the isotropic elastic stiffness, which is the consistent
-   * one only to first order in the stress over the modulus: the law has no
-   * stored energy, and implicit schemes converge with it linearly.
+   * Its tangent is the derivative of this update by central differences
+   * (numerical_spatial_tangent): consistent for stretches; a rotation of
+   * the step is only objective to first order in dt L, as for any Jaumann
+   * integration.
    */
   class LinearElastic : public Material
   {
@@ -27,8 +28,8 @@ namespace mpm
 
     SymmetricTensor<4, 3>
     spatial_tangent(const StepKinematics &         kinematics,
-                    const SymmetricTensor<2, 3> &  stress,
-                    const ArrayView<const double> &internal_variables)
+                    const SymmetricTensor<2, 3> &  old_stress,
+                    const ArrayView<const double> &old_internal_variables)
       const override;
   };
 } // namespace mpm

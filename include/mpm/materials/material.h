@@ -59,12 +59,29 @@ namespace mpm
      * The spatial tangent c of the Cauchy stress, c = c_tau / J, where c_tau
      * relates the Truesdell rate of the Kirchhoff stress to the rate of
      * deformation: the material part of the updated-Lagrangian tangent,
-     * [I] eqs. (24) and (33). Evaluated at the state update_stress() left.
+     * [I] eqs. (24) and (33). It is the tangent of update_stress() itself
+     * (consistent), at kinematics.F_new, for the step that starts from
+     * `old_stress` and `old_internal_variables`.
      */
     virtual SymmetricTensor<4, 3>
-    spatial_tangent(const StepKinematics &       kinematics,
-                    const SymmetricTensor<2, 3> &stress,
-                    const ArrayView<const double> &internal_variables) const = 0;
+    spatial_tangent(const StepKinematics &         kinematics,
+                    const SymmetricTensor<2, 3> &  old_stress,
+                    const ArrayView<const double> &old_internal_variables)
+      const = 0;
+
+    /**
+     * The same tangent by central differences of update_stress(): for a
+     * perturbation F_new -> (I + h E) F_new with E symmetric, the Truesdell
+     * rate of tau is (tau(+h) - tau(-h)) / 2h - E tau - tau E = c_tau : E.
+     * Accurate to about 1e-9 relative where the update is smooth, which
+     * keeps Newton quadratic to that level. Laws without a closed form use
+     * it; the tests compare the closed forms with it.
+     */
+    SymmetricTensor<4, 3>
+    numerical_spatial_tangent(
+      const StepKinematics &         kinematics,
+      const SymmetricTensor<2, 3> &  old_stress,
+      const ArrayView<const double> &old_internal_variables) const;
 
     /** How many internal variables a point of this law carries. */
     virtual unsigned int
@@ -96,19 +113,6 @@ namespace mpm
     p_wave_speed() const;
 
   protected:
-    /**
-     * The spatial tangent by central differences of update_stress(), for
-     * laws whose stress depends on F alone: for a perturbation dF = h E F
-     * with E symmetric, the Truesdell rate of tau is
-     * (tau(F + dF) - tau(F - dF)) / 2h - E tau - tau E = c_tau : E.
-     * Accurate to about 1e-9 relative, which keeps Newton quadratic to that
-     * level.
-     */
-    SymmetricTensor<4, 3>
-    numerical_spatial_tangent(
-      const StepKinematics &         kinematics,
-      const ArrayView<const double> &internal_variables) const;
-
     Material(const ParameterHandler &prm,
              const std::string &     name,
              const std::string &     section_path);

@@ -153,17 +153,19 @@ namespace mpm
 
     /**
      * What the law sees of a step with deformation increment dF from F_n:
-     * F_new = dF F_n, and with dt = 1 the velocity gradient L = dF - I.
+     * F_new = dF F_n, and the velocity gradient L = (dF - I) / dt over the
+     * step (or load step, in pseudo-time), so rate laws see their rate.
      */
-    static StepKinematics
-    step_kinematics(const Tensor<2, dim> &dF, const Tensor<2, dim> &F_n)
+    StepKinematics
+    step_kinematics(const Tensor<2, dim> &dF, const Tensor<2, dim> &F_n) const
     {
       StepKinematics k;
       k.F_old = PointLayout<dim>::embed(F_n, 1.);
       k.F_new = PointLayout<dim>::embed(dF * F_n, 1.);
-      k.dt    = 1.;
-      k.velocity_gradient = PointLayout<dim>::embed(dF, 1.) -
-                            Tensor<2, 3>(unit_symmetric_tensor<3>());
+      k.dt    = time_step;
+      k.velocity_gradient = (PointLayout<dim>::embed(dF, 1.) -
+                             Tensor<2, 3>(unit_symmetric_tensor<3>())) /
+                            time_step;
       return k;
     }
 
