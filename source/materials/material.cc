@@ -2,7 +2,9 @@
 #include <mpm/materials/hencky.h>
 #include <mpm/materials/linear_elastic.h>
 #include <mpm/materials/material.h>
+#include <mpm/materials/mohr_coulomb.h>
 #include <mpm/materials/neo_hookean.h>
+#include <mpm/materials/von_mises.h>
 
 #include <cmath>
 
@@ -13,13 +15,16 @@ namespace mpm
   {
     prm.declare_entry("Model",
                       "linear elastic",
-                      Patterns::Selection("linear elastic|neo-Hookean|Hencky"),
+                      Patterns::Selection("linear elastic|neo-Hookean|Hencky|"
+                                          "Mohr-Coulomb|von Mises"),
                       "Constitutive law. 'linear elastic': hypoelastic, "
                       "integrated with the Jaumann stress rate as in "
                       "Wieckowski (2004). 'neo-Hookean': compressible "
                       "hyperelastic, sigma = (mu (b - I) + lambda ln(J) I)/J. "
                       "'Hencky': hyperelastic, Kirchhoff stress linear in the "
-                      "logarithmic strain.");
+                      "logarithmic strain. 'Mohr-Coulomb' and 'von Mises': "
+                      "elastoplastic at finite strain with Hencky elasticity "
+                      "(subsections of the same names).");
     prm.declare_entry("Density",
                       "1000",
                       Patterns::Double(0.),
@@ -32,14 +37,16 @@ namespace mpm
                       "0.3",
                       Patterns::Double(-1., 0.5),
                       "Poisson's ratio nu, -1 < nu < 0.5.");
+    MohrCoulomb::declare_parameters(prm);
+    VonMises::declare_parameters(prm);
   }
 
 
 
   std::unique_ptr<Material>
-  Material::create(const ParameterHandler &prm,
-                   const std::string &     name,
-                   const std::string &     section_path)
+  Material::create(ParameterHandler & prm,
+                   const std::string &name,
+                   const std::string &section_path)
   {
     const std::string model = prm.get("Model");
     if (model == "linear elastic")
@@ -48,9 +55,13 @@ namespace mpm
       return std::make_unique<NeoHookean>(prm, name, section_path);
     if (model == "Hencky")
       return std::make_unique<Hencky>(prm, name, section_path);
+    if (model == "Mohr-Coulomb")
+      return std::make_unique<MohrCoulomb>(prm, name, section_path);
+    if (model == "von Mises")
+      return std::make_unique<VonMises>(prm, name, section_path);
     throw InputError(section_path + "/Model = '" + model +
                      "' is not a known law; use one of: linear elastic, "
-                     "neo-Hookean, Hencky.");
+                     "neo-Hookean, Hencky, Mohr-Coulomb, von Mises.");
   }
 
 

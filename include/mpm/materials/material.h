@@ -45,9 +45,9 @@ namespace mpm
 
     /** Build the law named by `Model` in the current subsection. */
     static std::unique_ptr<Material>
-    create(const ParameterHandler &prm,
-           const std::string &     name,
-           const std::string &     section_path);
+    create(ParameterHandler & prm,
+           const std::string &name,
+           const std::string &section_path);
 
     /** Cauchy stress at the end of the step, in place. */
     virtual void

@@ -1,0 +1,125 @@
+#include <mpm/materials/hencky_plasticity.h>
+
+#include <cmath>
+
+namespace mpm
+{
+  HenckyPlasticity::HenckyPlasticity(const ParameterHandler &prm,
+                                     const std::string &     name,
+                                     const std::string &     section_path)
+    : Material(prm, name, section_path)
+  {}
+
+
+
+  Tensor<2, 3>
+  HenckyPlasticity::principal_stiffness() const
+  {
+    Tensor<2, 3> D;
+    for (unsigned int a = 0; a < 3; ++a)
+      for (unsigned int b = 0; b < 3; ++b)
+        D[a][b] = lambda + (a == b ? 2. * mu : 0.);
+    return D;
+  }
+
+
+
+  HenckyPlasticity::Step
+  HenckyPlasticity::compute_step(
+    const StepKinematics &         kinematics,
+    const ArrayView<const double> &old_internal_variables) const
+  {
+    SymmetricTensor<2, 3> b_old = unit_symmetric_tensor<3>();
+    for (unsigned int k = 0; k < 6; ++k)
+      b_old.access_raw_entry(k) += old_internal_variables[k];
+    const Tensor<2, 3> f = kinematics.F_new * invert(kinematics.F_old);
+    const SymmetricTensor<2, 3> b_trial =
+      symmetrize(Tensor<2, 3>(f * Tensor<2, 3>(b_old) * transpose(f)));
+
+    Step         step;
+    Tensor<1, 3> trial_tau;
+    const auto   eigen =
+      eigenvectors(b_trial, SymmetricTensorEigenvectorMethod::jacobi);
+    const Tensor<2, 3> D = principal_stiffness();
+    Tensor<1, 3>       eps;
+    for (unsigned int a = 0; a < 3; ++a)
+      {
+        step.beta[a]       = eigen[a].first;
+        step.directions[a] = eigen[a].second;
+        eps[a]             = 0.5 * std::log(eigen[a].first);
+      }
+    trial_tau   = D * eps;
+    step.result = return_to_yield_surface(
+      trial_tau, old_internal_variables[equivalent_plastic_strain]);
+    step.J = determinant(kinematics.F_new);
+    return step;
+  }
+
+
+
+  void
+  HenckyPlasticity::update_stress(const StepKinematics &   kinematics,
+                                  SymmetricTensor<2, 3> &  stress,
+                                  const ArrayView<double> &internal_variables)
+    const
+  {
+    const Step step = compute_step(
+      kinematics,
+      ArrayView<const double>(internal_variables.data(),
+                              internal_variables.size()));
+    // The elastic strains of the returned stress rebuild b_e.
+    const Tensor<1, 3> eps_elastic =
+      invert(principal_stiffness()) * step.result.tau;
+    SymmetricTensor<2, 3> b_new;
+    stress = 0;
+    for (unsigned int a = 0; a < 3; ++a)
+      {
+        const SymmetricTensor<2, 3> m = symmetrize(
+          outer_product(step.directions[a], step.directions[a]));
+        b_new += std::exp(2. * eps_elastic[a]) * m;
+        stress += step.result.tau[a] / step.J * m;
+      }
+    b_new -= unit_symmetric_tensor<3>();
+    for (unsigned int k = 0; k < 6; ++k)
+      internal_variables[k] = b_new.access_raw_entry(k);
+    internal_variables[equivalent_plastic_strain] +=
+      step.result.plastic_strain_increment;
+  }
+
+
+
+  SymmetricTensor<4, 3>
+  HenckyPlasticity::spatial_tangent(
+    const StepKinematics &kinematics,
+    const SymmetricTensor<2, 3> &,
+    const ArrayView<const double> &old_internal_variables) const
+  {
+    const Step          step = compute_step(kinematics, old_internal_variables);
+    const Tensor<1, 3> &tau  = step.result.tau;
+    const Tensor<2, 3> &D    = step.result.tangent;
+    const Tensor<1, 3> &beta = step.beta;
+
+    std::array<SymmetricTensor<2, 3>, 3> m;
+    for (unsigned int a = 0; a < 3; ++a)
+      m[a] = symmetrize(outer_product(step.directions[a], step.directions[a]));
+    SymmetricTensor<4, 3> c;
+    for (unsigned int a = 0; a < 3; ++a)
+      for (unsigned int b = 0; b < 3; ++b)
+        c += (D[a][b] - (a == b ? 2. * tau[a] : 0.)) * outer_product(m[a], m[b]);
+    for (unsigned int a = 0; a < 3; ++a)
+      for (unsigned int b = a + 1; b < 3; ++b)
+        {
+          // Relative to the larger stretch, equal eigenvalues take the
+          // limit; below 1e-8 the difference quotient loses its digits.
+          const double g =
+            std::abs(beta[a] - beta[b]) <
+                1e-8 * std::max(std::abs(beta[a]), std::abs(beta[b])) ?
+              D[a][a] - D[a][b] - 2. * tau[a] :
+              2. * (tau[a] * beta[b] - tau[b] * beta[a]) / (beta[a] - beta[b]);
+          const SymmetricTensor<2, 3> s = symmetrize(
+            outer_product(step.directions[a], step.directions[b]));
+          c += 2. * g * outer_product(s, s);
+        }
+    return c / step.J;
+  }
+} // namespace mpm
