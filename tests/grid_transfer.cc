@@ -159,7 +159,7 @@ test()
     bodies.emplace_back(prm, "body", "body", std::vector<std::string>{"steel"});
     prm.leave_subsection();
 
-    MaterialPoints<dim> points(tria, mapping, 0, false);
+    MaterialPoints<dim> points(tria, mapping, {}, false);
     points.seed(bodies, materials, basis);
     using Layout = PointLayout<dim>;
     // Masses and velocities from the point id, the same on any number of

@@ -192,12 +192,15 @@ namespace mpm
     else
       mapping = std::make_unique<MappingQ<dim>>(1);
 
-    unsigned int n_internal = 0;
+    // Every point carries as many internal variables as the largest law
+    // needs, named after that law.
+    std::vector<std::string> internal_names;
     for (const auto &m : materials)
-      n_internal = std::max(n_internal, m->n_internal_variables());
+      if (m->n_internal_variables() > internal_names.size())
+        internal_names = m->internal_variable_names();
     points = std::make_unique<MaterialPoints<dim>>(triangulation,
                                                    *mapping,
-                                                   n_internal,
+                                                   internal_names,
                                                    scheme_name != "explicit");
     points->seed(bodies, materials, basis);
     loads = std::make_unique<PointLoads<dim>>(prm,

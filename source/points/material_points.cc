@@ -45,15 +45,16 @@ namespace mpm
   MaterialPoints<dim>::MaterialPoints(
     const parallel::distributed::Triangulation<dim> &tria,
     const Mapping<dim> &                             mapping,
-    const unsigned int                               n_internal_variables,
+    const std::vector<std::string> &                 internal_variable_names,
     const bool                                       implicit_fields)
     : triangulation(tria)
     , mapping(mapping)
     , particle_handler(tria,
                        mapping,
-                       Layout::n_properties(n_internal_variables) +
+                       Layout::n_properties(internal_variable_names.size()) +
                          (implicit_fields ? 2 * dim : 0))
-    , n_internal(n_internal_variables)
+    , internal_names(internal_variable_names)
+    , n_internal(internal_variable_names.size())
     , implicit_fields(implicit_fields)
   {
     particle_handler.signals.particle_lost.connect(
@@ -70,6 +71,9 @@ namespace mpm
   MaterialPoints<dim>::property_names() const
   {
     std::vector<std::string> names = Layout::names(n_internal);
+    std::copy(internal_names.begin(),
+              internal_names.end(),
+              names.begin() + Layout::internal_variables);
     if (implicit_fields)
       {
         for (unsigned int d = 0; d < dim; ++d)

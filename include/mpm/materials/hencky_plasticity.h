@@ -51,6 +51,18 @@ namespace mpm
       return 7;
     }
 
+    std::vector<std::string>
+    internal_variable_names() const override
+    {
+      return {"elastic_b_minus_I_xx",
+              "elastic_b_minus_I_yy",
+              "elastic_b_minus_I_zz",
+              "elastic_b_minus_I_xy",
+              "elastic_b_minus_I_xz",
+              "elastic_b_minus_I_yz",
+              "plastic_strain"};
+    }
+
     /** The result of a return in principal stress space. */
     struct Return
     {

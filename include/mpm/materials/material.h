@@ -8,6 +8,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace mpm
 {
@@ -88,6 +89,13 @@ namespace mpm
     n_internal_variables() const
     {
       return 0;
+    }
+
+    /** Their names in the output, one per variable. */
+    virtual std::vector<std::string>
+    internal_variable_names() const
+    {
+      return {};
     }
 
     const std::string &

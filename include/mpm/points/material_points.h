@@ -29,13 +29,15 @@ namespace mpm
     using Layout = PointLayout<dim>;
 
     /**
-     * `implicit_fields`: give every point an acceleration and a point load
-     * (the implicit schemes need them), after the internal variables.
+     * `internal_variable_names`: the internal variables every point
+     * carries, named for the output. `implicit_fields`: give every point an
+     * acceleration and a point load (the implicit schemes need them), after
+     * the internal variables.
      */
     MaterialPoints(const parallel::distributed::Triangulation<dim> &tria,
                    const Mapping<dim> &                             mapping,
-                   const unsigned int n_internal_variables,
-                   const bool         implicit_fields);
+                   const std::vector<std::string> &internal_variable_names,
+                   const bool                      implicit_fields);
 
     /**
      * Fill every locally owned cell with the points of the bodies that
@@ -128,6 +130,7 @@ namespace mpm
     const parallel::distributed::Triangulation<dim> &triangulation;
     const Mapping<dim> &                             mapping;
     Particles::ParticleHandler<dim>                  particle_handler;
+    const std::vector<std::string>  internal_names;
     const unsigned int              n_internal;
     const bool                      implicit_fields;
 
