@@ -54,7 +54,6 @@ namespace mpm
                        Layout::n_properties(internal_variable_names.size()) +
                          (implicit_fields ? 2 * dim : 0))
     , internal_names(internal_variable_names)
-    , n_internal(internal_variable_names.size())
     , implicit_fields(implicit_fields)
   {
     particle_handler.signals.particle_lost.connect(
@@ -70,7 +69,7 @@ namespace mpm
   std::vector<std::string>
   MaterialPoints<dim>::property_names() const
   {
-    std::vector<std::string> names = Layout::names(n_internal);
+    std::vector<std::string> names = Layout::names(n_internal_variables());
     std::copy(internal_names.begin(),
               internal_names.end(),
               names.begin() + Layout::internal_variables);

@@ -42,13 +42,6 @@ namespace mpm
       return active;
     }
 
-    /** Whether the user gave a load factor function. */
-    bool
-    has_load_factor_function() const
-    {
-      return static_cast<bool>(load_factor_function);
-    }
-
     /** The factor on loads and gravity at time t. */
     double
     load_factor(double t) const;

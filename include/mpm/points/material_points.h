@@ -86,7 +86,7 @@ namespace mpm
     unsigned int
     n_internal_variables() const
     {
-      return n_internal;
+      return internal_names.size();
     }
 
     /** Whether the points carry the implicit fields (acceleration, load). */
@@ -101,7 +101,7 @@ namespace mpm
     acceleration_index() const
     {
       Assert(implicit_fields, ExcInternalError());
-      return Layout::internal_variables + n_internal;
+      return Layout::internal_variables + n_internal_variables();
     }
 
     /** Index of the force at full load (implicit fields only). */
@@ -109,7 +109,7 @@ namespace mpm
     point_load_index() const
     {
       Assert(implicit_fields, ExcInternalError());
-      return Layout::internal_variables + n_internal + dim;
+      return Layout::internal_variables + n_internal_variables() + dim;
     }
 
     /** Names of all properties, for output; vectors repeat their name. */
@@ -131,7 +131,6 @@ namespace mpm
     const Mapping<dim> &                             mapping;
     Particles::ParticleHandler<dim>                  particle_handler;
     const std::vector<std::string>  internal_names;
-    const unsigned int              n_internal;
     const bool                      implicit_fields;
 
     /** Filled by the particle_lost signal during a sort. */
