@@ -76,6 +76,16 @@ main(int argc, char **argv)
   run_case("Poisson's ratio 0.5", with({"Materials/rubber/Poisson's ratio=0.5"}));
   run_case("zero Young's modulus", with({"Materials/rubber/Young's modulus=0"}));
   run_case("unknown material", with({"Bodies/block/Material=steel"}));
+  run_case("softening that raises the cohesion",
+           with({"Materials/rubber/Model=Mohr-Coulomb",
+                 "Materials/rubber/Mohr-Coulomb/Cohesion=1000",
+                 "Materials/rubber/Mohr-Coulomb/Softening plastic strain=0.1",
+                 "Materials/rubber/Mohr-Coulomb/Residual cohesion=2000"}));
+  run_case("tension cut-off beyond the apex",
+           with({"Materials/rubber/Model=Mohr-Coulomb",
+                 "Materials/rubber/Mohr-Coulomb/Cohesion=1000",
+                 "Materials/rubber/Mohr-Coulomb/Tension cut-off=true",
+                 "Materials/rubber/Mohr-Coulomb/Tensile strength=5000"}));
   run_case("unknown boundary name",
            with({"Boundary conditions/Fixed boundaries=floor"}));
   run_case("boundary id not in the grid",

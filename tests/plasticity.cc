@@ -1,9 +1,10 @@
 // The elastoplastic laws (Hencky elasticity, exponential-map return):
-// - after every return from 3000 random trial states (random stretches and
+// - after every return from 4500 random trial states (random stretches and
 //   rotations from random earlier plastic states) the stress is on or
 //   inside the yield surface to 1e-10 of its size, for Mohr-Coulomb
-//   (associated and not) and von Mises (perfect and hardening); the
-//   Mohr-Coulomb returns visit the plane, both edges and the apex;
+//   (associated and not, softening, with a tension cut-off) and von Mises
+//   (perfect and hardening); the Mohr-Coulomb returns visit the plane,
+//   both edges and the apex, or with the cut-off its plane and corner;
 // - the consistent tangent (closed form, HenckyPlasticity) matches central
 //   differences of the stress update to 1e-6 at elastic, plane, edge and
 //   apex states, and after an earlier plastic step with a rotation;
@@ -18,6 +19,10 @@
 //   tau_y, and flows along the two potentials: d eps_p ~ (m, m, -2);
 // - Mohr-Coulomb in hydrostatic tension beyond the apex returns to
 //   c cot(phi);
+// - tension cut-off in uniaxial strain: tau_xx = t and tau_yy = tau_zz =
+//   lambda t / (lambda + 2 mu) once it yields;
+// - softening: each step on the surface of its starting plastic strain,
+//   and the residual edge past the softening strain;
 // - objectivity: a rigid rotation applied to a plastically stressed point
 //   rotates its stress, keeps the invariants and the plastic strain.
 
@@ -39,8 +44,8 @@ const double lambda_ = E * nu / ((1 + nu) * (1 - 2 * nu));
 const double mu_     = E / (2 * (1 + nu));
 
 std::unique_ptr<HenckyPlasticity>
-make(const std::string &                               model,
-     const std::vector<std::pair<std::string, double>> &settings)
+make(const std::string &                                    model,
+     const std::vector<std::pair<std::string, std::string>> &settings)
 {
   ParameterHandler prm;
   Material::declare_parameters(prm);
@@ -49,7 +54,7 @@ make(const std::string &                               model,
   prm.set("Poisson's ratio", std::to_string(nu));
   prm.enter_subsection(model);
   for (const auto &[entry, value] : settings)
-    prm.set(entry, std::to_string(value));
+    prm.set(entry, value);
   prm.leave_subsection();
   auto material = Material::create(prm, "test", "test");
   return std::unique_ptr<HenckyPlasticity>(
@@ -156,18 +161,37 @@ main(int argc, char **argv)
   const double sigma_c = 2 * c * std::sqrt(k);
 
   const auto mohr_coulomb = make("Mohr-Coulomb",
-                                 {{"Cohesion", c},
-                                  {"Friction angle", phi},
-                                  {"Dilatancy angle", psi}});
+                                 {{"Cohesion", "5e4"},
+                                  {"Friction angle", "30"},
+                                  {"Dilatancy angle", "10"}});
   const auto associated   = make("Mohr-Coulomb",
-                               {{"Cohesion", c},
-                                {"Friction angle", 25.},
-                                {"Dilatancy angle", 25.}});
+                               {{"Cohesion", "5e4"},
+                                {"Friction angle", "25"},
+                                {"Dilatancy angle", "25"}});
+  // Softening to c_r = 1e4, phi_r = 20 at plastic strain 0.01.
+  const double c_r = 1e4;
+  const double sin_phi_r = std::sin(20. * numbers::PI / 180.);
+  const double k_r       = (1 + sin_phi_r) / (1 - sin_phi_r);
+  const auto   softening = make("Mohr-Coulomb",
+                              {{"Cohesion", "5e4"},
+                               {"Friction angle", "30"},
+                               {"Dilatancy angle", "10"},
+                               {"Softening plastic strain", "0.01"},
+                               {"Residual cohesion", "1e4"},
+                               {"Residual friction angle", "20"}});
+  // Tension cut-off t = 2e4, below the apex c cot(phi) = 8.7e4.
+  const double t         = 2e4;
+  const auto   cut_off   = make("Mohr-Coulomb",
+                            {{"Cohesion", "5e4"},
+                             {"Friction angle", "30"},
+                             {"Dilatancy angle", "10"},
+                             {"Tension cut-off", "true"},
+                             {"Tensile strength", "2e4"}});
   const double sigma_y = 2.05e5, H = 1e6;
-  const auto   perfect   = make("von Mises", {{"Yield stress", sigma_y}});
+  const auto   perfect   = make("von Mises", {{"Yield stress", "2.05e5"}});
   const auto   hardening = make("von Mises",
-                              {{"Yield stress", sigma_y},
-                               {"Hardening modulus", H}});
+                              {{"Yield stress", "2.05e5"},
+                               {"Hardening modulus", "1e6"}});
 
   // Random returns.
   {
@@ -177,15 +201,20 @@ main(int argc, char **argv)
     const std::vector<std::pair<std::string, const HenckyPlasticity *>> laws =
       {{"Mohr-Coulomb phi 30 psi 10", mohr_coulomb.get()},
        {"Mohr-Coulomb associated", associated.get()},
+       {"Mohr-Coulomb softening", softening.get()},
+       {"Mohr-Coulomb tension cut-off", cut_off.get()},
        {"von Mises perfect", perfect.get()},
        {"von Mises hardening", hardening.get()}};
     for (const auto &[name, law] : laws)
       {
+        const bool   mohr = name.find("Mohr") != std::string::npos;
         double       worst   = 0.;
-        unsigned int plane   = 0, edge = 0, apex = 0;
+        unsigned int plane = 0, edge = 0, apex = 0, tension = 0,
+                     tension_corner = 0;
         for (unsigned int sample = 0; sample < 750; ++sample)
           {
-            State state;
+            State  state;
+            double start_plastic_strain = 0.;
             // An earlier step, then the one checked; a hydrostatic part
             // biased to tension reaches the apex.
             for (unsigned int s = 0; s < 2; ++s)
@@ -197,21 +226,33 @@ main(int argc, char **argv)
                   diagonal(std::exp(stretch(random) + bias),
                            std::exp(stretch(random) + bias),
                            std::exp(stretch(random) + bias));
+                start_plastic_strain = state.internal[6];
                 state.step(*law, R * U * transpose(R) * state.F);
               }
+            // Softening is explicit: a step returns to the surface of the
+            // plastic strain at its start; hardening (von Mises) is
+            // implicit, to the surface of its end.
             const Tensor<1, 3> tau = principal_tau(state);
-            const double       f =
-              law->yield_function(tau, state.internal[6]);
+            const double       f   = law->yield_function(
+              tau, mohr ? start_plastic_strain : state.internal[6]);
             worst = std::max(worst, f / (sigma_c + sigma_y));
             // Which return: the apex has three equal stresses, an edge two.
             const double scale = tau.norm() * 1e-9 + 1.;
             const bool   e01   = std::abs(tau[0] - tau[1]) < scale;
             const bool   e12   = std::abs(tau[1] - tau[2]) < scale;
+            const bool   e02   = std::abs(tau[0] - tau[2]) < scale;
             if (std::abs(f) < 1e-6 * sigma_c)
               {
-                if (e01 && e12)
+                const double largest = std::max({tau[0], tau[1], tau[2]});
+                if (law == cut_off.get() && std::abs(largest - t) < scale)
+                  {
+                    ++tension;
+                    if (e01 && e12)
+                      ++tension_corner;
+                  }
+                else if (e01 && e12)
                   ++apex;
-                else if (e01 || e12)
+                else if (e01 || e12 || e02)
                   ++edge;
                 else
                   ++plane;
@@ -220,7 +261,13 @@ main(int argc, char **argv)
         mpm_tests::check(name + ": every return on or inside the yield "
                                 "surface to 1e-10",
                          worst < 1e-10);
-        if (name.find("Mohr") != std::string::npos)
+        if (law == cut_off.get())
+          mpm_tests::check(name + ": returns to the Mohr-Coulomb planes and "
+                                  "edges, to the cut-off and to its corner "
+                                  "(at least 10 each)",
+                           plane >= 10 && edge >= 10 && tension >= 10 &&
+                             tension_corner >= 10);
+        else if (mohr)
           mpm_tests::check(name + ": returns to the plane, the edges and "
                                   "the apex (at least 10 each)",
                            plane >= 10 && edge >= 10 && apex >= 10);
@@ -245,9 +292,19 @@ main(int argc, char **argv)
       {"Mohr-Coulomb edge tau_1 = tau_2", mohr_coulomb.get(),
        rotated(diagonal(1.0, 1.0, 0.97))},
       {"Mohr-Coulomb edge tau_2 = tau_3", mohr_coulomb.get(),
-       rotated(diagonal(1.03, 1.0, 1.0))},
+       rotated(diagonal(1.02, 0.98, 0.98))},
       {"Mohr-Coulomb apex", mohr_coulomb.get(),
        rotated(diagonal(1.02, 1.02, 1.02))},
+      {"Mohr-Coulomb softening plane", softening.get(),
+       rotated(diagonal(1.02, 0.995, 0.98))},
+      {"Mohr-Coulomb softening edge tau_1 = tau_2", softening.get(),
+       rotated(diagonal(1.0, 1.0, 0.97))},
+      {"Cut-off plane (after a plastic step: its line with Mohr-Coulomb)",
+       cut_off.get(), rotated(diagonal(1.004, 1.0005, 0.9998))},
+      {"Cut-off edge tau_1 = tau_2 = t", cut_off.get(),
+       rotated(diagonal(1.006, 1.006, 0.995))},
+      {"Cut-off corner", cut_off.get(),
+       rotated(diagonal(1.011, 1.01, 1.012))},
       {"von Mises elastic", hardening.get(),
        rotated(diagonal(1.001, 0.9995, 1.0))},
       {"von Mises plastic", hardening.get(),
@@ -414,6 +471,83 @@ main(int argc, char **argv)
     mpm_tests::check("Mohr-Coulomb hydrostatic tension: tau = c cot(phi) "
                      "at the apex to 1e-12",
                      error < 1e-12);
+  }
+
+  // Tension cut-off in uniaxial strain (exp(e), 1, 1): tau_x = (lambda +
+  // 2 mu) e reaches t; then the cut-off alone is active and its flow
+  // (1, 0, 0) keeps tau_x = t and holds tau_y = tau_z = lambda t /
+  // (lambda + 2 mu), wherever e goes.
+  {
+    State        state;
+    double       yield_at = 0., error = 0.;
+    unsigned int n_plastic = 0;
+    const double e_t       = t / (lambda_ + 2 * mu_);
+    for (unsigned int n = 1; n <= 200; ++n)
+      {
+        const double e = 2e-5 * n;
+        state.step(*cut_off, diagonal(std::exp(e), 1., 1.));
+        if (state.internal[6] > 0. && yield_at == 0.)
+          yield_at = e;
+        if (e > e_t)
+          {
+            ++n_plastic;
+            const double J      = determinant(state.F);
+            const double expected_yy = lambda_ * t / (lambda_ + 2 * mu_);
+            error = std::max({error,
+                              std::abs(J * state.stress[0][0] - t) / t,
+                              std::abs(J * state.stress[1][1] - expected_yy) / t,
+                              std::abs(J * state.stress[2][2] - expected_yy) / t});
+          }
+      }
+    mpm_tests::check("Tension cut-off, uniaxial strain: yields in the step "
+                     "that crosses (lambda + 2 mu) e = t",
+                     yield_at >= e_t && yield_at < e_t + 2e-5);
+    mpm_tests::check("Tension cut-off, uniaxial strain: tau_xx = t, tau_yy = "
+                     "tau_zz = lambda t / (lambda + 2 mu) to 1e-9, over 100 "
+                     "plastic steps",
+                     error < 1e-9 && n_plastic > 100);
+  }
+
+  // Softening in the compression path above: each step ends on the edge of
+  // the surface at the plastic strain of its start (explicit softening),
+  // and beyond the softening strain the edge is that of
+  // c_r and phi_r: k_r tau_x - tau_z = 2 c_r sqrt(k_r).
+  {
+    State        state;
+    double       edge_error = 0., residual_error = 0.;
+    unsigned int n_residual = 0;
+    for (unsigned int n = 1; n <= 600; ++n)
+      {
+        const double e          = 1e-4 * n;
+        const double start_eps_p = state.internal[6];
+        state.step(*softening,
+                   diagonal(std::exp(nu * e), std::exp(nu * e), std::exp(-e)));
+        if (state.internal[6] == 0.)
+          continue;
+        const Tensor<1, 3> tau = principal_tau(state);
+        edge_error = std::max(edge_error,
+                              std::abs(softening->yield_function(tau,
+                                                                 start_eps_p)) /
+                                sigma_c);
+        const double J = determinant(state.F);
+        if (start_eps_p > 0.01)
+          {
+            ++n_residual;
+            const double tau_x = J * state.stress[0][0];
+            const double tau_z = J * state.stress[2][2];
+            residual_error =
+              std::max(residual_error,
+                       std::abs(k_r * tau_x - tau_z - 2 * c_r * std::sqrt(k_r)) /
+                         sigma_c);
+          }
+      }
+    mpm_tests::check("Mohr-Coulomb softening: every plastic step on the "
+                     "surface of its starting plastic strain to 1e-9",
+                     edge_error < 1e-9);
+    mpm_tests::check("Mohr-Coulomb softening: past the softening strain on "
+                     "the residual edge k_r tau_x - tau_z = 2 c_r sqrt(k_r) "
+                     "to 1e-9, over 50 steps",
+                     residual_error < 1e-9 && n_residual > 50);
   }
 
   // Objectivity of a plastic state.

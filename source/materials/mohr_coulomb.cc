@@ -1,9 +1,12 @@
+#include <deal.II/lac/full_matrix.h>
+
 #include <mpm/core/input_error.h>
+#include <mpm/core/parse.h>
 #include <mpm/materials/mohr_coulomb.h>
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
+#include <sstream>
 
 namespace mpm
 {
@@ -12,12 +15,32 @@ namespace mpm
   {
     prm.enter_subsection("Mohr-Coulomb");
     prm.declare_entry("Cohesion", "0", Patterns::Double(0.),
-                      "Cohesion c [Pa].");
+                      "Cohesion c [Pa] (the peak value with softening).");
     prm.declare_entry("Friction angle", "30", Patterns::Double(0., 89.),
-                      "Friction angle phi [degrees].");
+                      "Friction angle phi [degrees] (the peak value with "
+                      "softening).");
     prm.declare_entry("Dilatancy angle", "0", Patterns::Double(0., 89.),
                       "Dilatancy angle psi [degrees], at most phi; psi < "
-                      "phi is non-associated flow.");
+                      "phi is non-associated flow. With softening it is "
+                      "capped at the current friction angle.");
+    prm.declare_entry("Softening plastic strain", "0", Patterns::Double(0.),
+                      "Equivalent plastic strain at which c and phi reach "
+                      "their residual values, falling linearly from the "
+                      "peak; 0 means no softening.");
+    prm.declare_entry("Residual cohesion", "peak", Patterns::Anything(),
+                      "Cohesion after softening [Pa], at most the Cohesion; "
+                      "'peak' keeps the Cohesion. Read only with a "
+                      "Softening plastic strain > 0.");
+    prm.declare_entry("Residual friction angle", "peak", Patterns::Anything(),
+                      "Friction angle after softening [degrees], at most "
+                      "the Friction angle; 'peak' keeps the Friction angle. "
+                      "Read only with a Softening plastic strain > 0.");
+    prm.declare_entry("Tension cut-off", "false", Patterns::Bool(),
+                      "Limit the largest principal stress to the Tensile "
+                      "strength (Rankine plane, associated flow).");
+    prm.declare_entry("Tensile strength", "0", Patterns::Double(0.),
+                      "Tensile strength t [Pa] of the cut-off, at most "
+                      "c cot(phi), where Mohr-Coulomb itself has its apex.");
     prm.leave_subsection();
   }
 
@@ -28,45 +51,129 @@ namespace mpm
                            const std::string &section_path)
     : HenckyPlasticity(prm, name, section_path)
   {
+    const double      degree = numbers::PI / 180.;
+    const std::string here   = section_path + "/Mohr-Coulomb/";
+    // A residual value: 'peak' or a number, not below zero.
+    auto residual = [&](const std::string &entry, const double peak) {
+      const std::string text = prm.get(entry);
+      if (text == "peak")
+        return peak;
+      const double value = parse_point<1>(text, here + entry)[0];
+      if (!(value >= 0.))
+        throw InputError(here + entry + " = " + text +
+                         " must be 'peak' or a number >= 0.");
+      return value;
+    };
     prm.enter_subsection("Mohr-Coulomb");
-    cohesion         = prm.get_double("Cohesion");
-    const double phi = prm.get_double("Friction angle") * numbers::PI / 180.;
-    const double psi = prm.get_double("Dilatancy angle") * numbers::PI / 180.;
+    peak_cohesion            = prm.get_double("Cohesion");
+    peak_friction_angle      = prm.get_double("Friction angle") * degree;
+    dilatancy_angle          = prm.get_double("Dilatancy angle") * degree;
+    softening_plastic_strain = prm.get_double("Softening plastic strain");
+    residual_cohesion        = peak_cohesion;
+    residual_friction_angle  = peak_friction_angle;
+    if (softening_plastic_strain > 0.)
+      {
+        residual_cohesion = residual("Residual cohesion", peak_cohesion);
+        residual_friction_angle =
+          residual("Residual friction angle", peak_friction_angle / degree) *
+          degree;
+      }
+    tension_cut_off  = prm.get_bool("Tension cut-off");
+    tensile_strength = prm.get_double("Tensile strength");
     prm.leave_subsection();
-    if (psi > phi)
-      throw InputError(section_path +
-                       "/Mohr-Coulomb/Dilatancy angle must not exceed the "
-                       "Friction angle.");
-    if (phi == 0. && cohesion == 0.)
-      throw InputError(section_path +
-                       "/Mohr-Coulomb: with Friction angle = 0 the Cohesion "
-                       "must be positive (the material would have no "
-                       "strength).");
-    k = (1. + std::sin(phi)) / (1. - std::sin(phi));
-    m = (1. + std::sin(psi)) / (1. - std::sin(psi));
+
+    if (dilatancy_angle > peak_friction_angle)
+      throw InputError(here + "Dilatancy angle must not exceed the Friction "
+                              "angle.");
+    if (peak_friction_angle == 0. && peak_cohesion == 0.)
+      throw InputError(here + "with Friction angle = 0 the Cohesion must be "
+                              "positive (the material would have no "
+                              "strength).");
+    if (residual_cohesion > peak_cohesion ||
+        residual_friction_angle > peak_friction_angle)
+      throw InputError(here + "Residual cohesion and Residual friction angle "
+                              "must not exceed the Cohesion and the Friction "
+                              "angle: softening only lowers the strength.");
+    if (residual_friction_angle == 0. && residual_cohesion == 0.)
+      throw InputError(here + "with Residual friction angle = 0 the Residual "
+                              "cohesion must be positive (the softened "
+                              "material would have no strength).");
+    if (tension_cut_off && peak_friction_angle > 0. &&
+        tensile_strength > peak_cohesion / std::tan(peak_friction_angle))
+      {
+        std::ostringstream message;
+        message << here << "Tensile strength = " << tensile_strength
+                << " exceeds c cot(phi) = "
+                << peak_cohesion / std::tan(peak_friction_angle)
+                << ", the apex of the Mohr-Coulomb surface: the cut-off "
+                   "would never act.";
+        throw InputError(message.str());
+      }
+  }
+
+
+
+  std::pair<double, double>
+  MohrCoulomb::strength(const double plastic_strain) const
+  {
+    const double s =
+      softening_plastic_strain > 0. ?
+        std::min(plastic_strain / softening_plastic_strain, 1.) :
+        0.;
+    return {peak_cohesion + s * (residual_cohesion - peak_cohesion),
+            peak_friction_angle +
+              s * (residual_friction_angle - peak_friction_angle)};
+  }
+
+
+
+  std::vector<MohrCoulomb::Plane>
+  MohrCoulomb::planes(const double plastic_strain) const
+  {
+    const auto [c, phi] = strength(plastic_strain);
+    const double psi    = std::min(dilatancy_angle, phi);
+    const double k      = (1. + std::sin(phi)) / (1. - std::sin(phi));
+    const double m      = (1. + std::sin(psi)) / (1. - std::sin(psi));
+    const double sigma_c = 2. * c * std::sqrt(k);
+    std::vector<Plane> result = {
+      {Tensor<1, 3>({k, 0., -1.}), Tensor<1, 3>({m, 0., -1.}), sigma_c},
+      {Tensor<1, 3>({0., k, -1.}), Tensor<1, 3>({0., m, -1.}), sigma_c},
+      {Tensor<1, 3>({k, -1., 0.}), Tensor<1, 3>({m, -1., 0.}), sigma_c}};
+    if (tension_cut_off)
+      for (unsigned int i = 0; i < 3; ++i)
+        {
+          Tensor<1, 3> e;
+          e[i] = 1.;
+          result.push_back({e, e, tensile_strength});
+        }
+    return result;
   }
 
 
 
   double
-  MohrCoulomb::yield_function(const Tensor<1, 3> &tau, double) const
+  MohrCoulomb::yield_function(const Tensor<1, 3> &tau,
+                              const double        plastic_strain) const
   {
-    const double largest  = std::max({tau[0], tau[1], tau[2]});
-    const double smallest = std::min({tau[0], tau[1], tau[2]});
-    return k * largest - smallest - 2. * cohesion * std::sqrt(k);
+    Tensor<1, 3> sorted = tau;
+    std::sort(&sorted[0], &sorted[0] + 3, std::greater<double>());
+    double f = -std::numeric_limits<double>::max();
+    for (const Plane &plane : planes(plastic_strain))
+      f = std::max(f, plane.a * sorted - plane.r);
+    return f;
   }
 
 
 
   HenckyPlasticity::Return
   MohrCoulomb::return_to_yield_surface(const Tensor<1, 3> &trial_tau,
-                                       double) const
+                                       const double plastic_strain) const
   {
     const Tensor<2, 3> D = principal_stiffness();
     Return             r;
     r.tau     = trial_tau;
     r.tangent = D;
-    if (yield_function(trial_tau, 0.) <= 0.)
+    if (yield_function(trial_tau, plastic_strain) <= 0.)
       return r;
 
     // Work in the ordered frame: sigma_1 >= sigma_2 >= sigma_3.
@@ -78,76 +185,89 @@ namespace mpm
     for (unsigned int i = 0; i < 3; ++i)
       sigma_trial[i] = trial_tau[order[i]];
 
-    const double sigma_c = 2. * cohesion * std::sqrt(k);
-    // Normals of the yield planes and plastic potentials in the ordered
-    // frame: the main plane, and the second plane of each edge.
-    const Tensor<1, 3> a_main({k, 0., -1.}), b_main({m, 0., -1.});
-    const Tensor<1, 3> a_first({0., k, -1.}), b_first({0., m, -1.});
-    const Tensor<1, 3> a_second({k, -1., 0.}), b_second({m, -1., 0.});
-    const double       tolerance = 1e-12 * (std::abs(sigma_c) +
-                                      sigma_trial.norm() + 1.);
-    auto ordered = [&](const Tensor<1, 3> &s) {
-      return s[0] >= s[1] - tolerance && s[1] >= s[2] - tolerance;
+    const std::vector<Plane> surfaces = planes(plastic_strain);
+    const double tolerance = 1e-12 * (surfaces[0].r + sigma_trial.norm() + 1.);
+    auto admissible = [&](const Tensor<1, 3> &s) {
+      if (s[0] < s[1] - tolerance || s[1] < s[2] - tolerance)
+        return false;
+      for (const Plane &plane : surfaces)
+        if (plane.a * s - plane.r > tolerance)
+          return false;
+      return true;
     };
 
     Tensor<1, 3> sigma;
     Tensor<2, 3> tangent;
-    Tensor<1, 3> plastic_strain;
-    bool         done = false;
-
-    // 1. The plane.
-    {
-      const Tensor<1, 3> Db    = D * b_main;
-      const double       gamma = (a_main * sigma_trial - sigma_c) / (a_main * Db);
-      sigma                    = sigma_trial - gamma * Db;
-      if (ordered(sigma))
+    Tensor<1, 3> plastic_strain_step;
+    // The return to the planes `active`: true if it is admissible.
+    auto return_to = [&](const std::vector<unsigned int> &active) {
+      const unsigned int        n = active.size();
+      std::vector<Tensor<1, 3>> Db(n), Da(n);
+      FullMatrix<double>        M(n, n);
+      double                    scale = 1.;
+      for (unsigned int i = 0; i < n; ++i)
         {
-          tangent = D - outer_product(Db, D * a_main) / (a_main * Db);
-          plastic_strain = gamma * b_main;
-          done           = true;
+          Db[i] = D * surfaces[active[i]].b;
+          Da[i] = D * surfaces[active[i]].a;
+          scale *= surfaces[active[i]].a.norm() * Db[i].norm();
+          for (unsigned int j = 0; j < n; ++j)
+            M(i, j) = surfaces[active[i]].a * (D * surfaces[active[j]].b);
         }
-    }
-    // 2. An edge, with two multipliers: the one that the plane return
-    //    crossed.
+      if (std::abs(M.determinant()) <= 1e-10 * scale)
+        return false;
+      M.gauss_jordan();
+      std::vector<double> gamma(n, 0.);
+      Tensor<1, 3>        s = sigma_trial;
+      for (unsigned int i = 0; i < n; ++i)
+        {
+          for (unsigned int j = 0; j < n; ++j)
+            gamma[i] += M(i, j) * (surfaces[active[j]].a * sigma_trial -
+                                   surfaces[active[j]].r);
+          if (gamma[i] * (lambda + 2. * mu) < -tolerance)
+            return false;
+          s -= gamma[i] * Db[i];
+        }
+      if (!admissible(s))
+        return false;
+      sigma               = s;
+      tangent             = D;
+      plastic_strain_step = Tensor<1, 3>();
+      for (unsigned int i = 0; i < n; ++i)
+        {
+          plastic_strain_step += gamma[i] * surfaces[active[i]].b;
+          for (unsigned int j = 0; j < n; ++j)
+            tangent -= M(i, j) * outer_product(Db[i], Da[j]);
+        }
+      return true;
+    };
+
+    // Fewest planes first: one, then the lines of two, the points of three.
+    const unsigned int n_planes = surfaces.size();
+    bool               done     = false;
+    for (unsigned int i = 0; i < n_planes && !done; ++i)
+      done = return_to({i});
+    for (unsigned int i = 0; i < n_planes && !done; ++i)
+      for (unsigned int j = i + 1; j < n_planes && !done; ++j)
+        done = return_to({i, j});
+    for (unsigned int i = 0; i < n_planes && !done; ++i)
+      for (unsigned int j = i + 1; j < n_planes && !done; ++j)
+        for (unsigned int l = j + 1; l < n_planes && !done; ++l)
+          done = return_to({i, j, l});
+    // The apex, where the flow of the planes (psi = 0: deviatoric) cannot
+    // reach: the stress goes to it and the rest of the step is plastic.
     if (!done)
       {
-        const bool         first_edge = sigma[1] > sigma[0];
-        const Tensor<1, 3> a2 = first_edge ? a_first : a_second;
-        const Tensor<1, 3> b2 = first_edge ? b_first : b_second;
-        const std::array<Tensor<1, 3>, 2> A = {{a_main, a2}};
-        const std::array<Tensor<1, 3>, 2> Bd = {{D * b_main, D * b2}};
-        double M[2][2];
-        for (unsigned int i = 0; i < 2; ++i)
-          for (unsigned int j = 0; j < 2; ++j)
-            M[i][j] = A[i] * Bd[j];
-        const double det = M[0][0] * M[1][1] - M[0][1] * M[1][0];
-        const double f1  = a_main * sigma_trial - sigma_c;
-        const double f2  = a2 * sigma_trial - sigma_c;
-        const double g1  = (M[1][1] * f1 - M[0][1] * f2) / det;
-        const double g2  = (M[0][0] * f2 - M[1][0] * f1) / det;
-        const Tensor<1, 3> s = sigma_trial - g1 * Bd[0] - g2 * Bd[1];
-        if (g1 >= 0. && g2 >= 0. && ordered(s))
-          {
-            sigma = s;
-            // D - D B (A^T D B)^-1 A^T D.
-            const double inv[2][2] = {{M[1][1] / det, -M[0][1] / det},
-                                      {-M[1][0] / det, M[0][0] / det}};
-            tangent = D;
-            for (unsigned int i = 0; i < 2; ++i)
-              for (unsigned int j = 0; j < 2; ++j)
-                tangent -= inv[i][j] * outer_product(Bd[i], D * A[j]);
-            plastic_strain = g1 * b_main + g2 * b2;
-            done           = true;
-          }
-      }
-    // 3. The apex (phi > 0 only: for Tresca the edges always hold).
-    if (!done)
-      {
-        AssertThrow(k > 1., ExcInternalError());
-        const double apex = sigma_c / (k - 1.);
-        sigma             = Tensor<1, 3>({apex, apex, apex});
-        tangent           = Tensor<2, 3>();
-        plastic_strain    = invert(D) * (sigma_trial - sigma);
+        const double k    = surfaces[0].a[0];
+        const double apex = surfaces[0].r / (k - 1.);
+        AssertThrow(k > 1. && !(tension_cut_off && tensile_strength < apex),
+                    ExcMessage("Mohr-Coulomb: no return found for the trial "
+                               "stress (" +
+                               std::to_string(sigma_trial[0]) + ", " +
+                               std::to_string(sigma_trial[1]) + ", " +
+                               std::to_string(sigma_trial[2]) + ")."));
+        sigma               = Tensor<1, 3>({apex, apex, apex});
+        tangent             = Tensor<2, 3>();
+        plastic_strain_step = invert(D) * (sigma_trial - sigma);
       }
 
     for (unsigned int i = 0; i < 3; ++i)
@@ -157,7 +277,7 @@ namespace mpm
           r.tangent[order[i]][order[j]] = tangent[i][j];
       }
     r.plastic_strain_increment =
-      std::sqrt(2. / 3. * (plastic_strain * plastic_strain));
+      std::sqrt(2. / 3. * (plastic_strain_step * plastic_strain_step));
     return r;
   }
 } // namespace mpm

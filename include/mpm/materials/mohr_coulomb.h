@@ -3,21 +3,37 @@
 
 #include <mpm/materials/hencky_plasticity.h>
 
+#include <vector>
+
 namespace mpm
 {
   /**
-   * Mohr-Coulomb, elastic-perfectly plastic, with Hencky elasticity at
-   * finite strain (HenckyPlasticity). With the principal Kirchhoff stresses
-   * ordered tau_1 >= tau_2 >= tau_3 (tension positive), the yield function
-   * is f = k tau_1 - tau_3 - 2 c sqrt(k), k = (1 + sin phi) / (1 - sin
-   * phi), and the plastic potential g = m tau_1 - tau_3 with m from the
-   * dilatancy angle psi (non-associated for psi < phi). The return in
-   * principal stress space follows Clausen, Damkilde and Andersen (2006):
-   * to the plane, to one of the two edges (tau_1 = tau_2 or tau_2 =
-   * tau_3) with two multipliers, or to the apex tau = c cot(phi); each is
-   * exact for the linear surfaces, and each has its algorithmic tangent
-   * (zero at the apex). phi = 0 is Tresca. The equivalent plastic strain
-   * grows by sqrt(2/3 |d eps_p|^2) of the principal plastic strain step.
+   * Mohr-Coulomb with Hencky elasticity at finite strain
+   * (HenckyPlasticity). With the principal Kirchhoff stresses ordered
+   * tau_1 >= tau_2 >= tau_3 (tension positive), the yield function is
+   * f = k tau_1 - tau_3 - 2 c sqrt(k), k = (1 + sin phi) / (1 - sin phi),
+   * and the plastic potential g = m tau_1 - tau_3 with m from the
+   * dilatancy angle psi (non-associated for psi < phi). phi = 0 is Tresca.
+   *
+   * Options:
+   * - a tension cut-off (Rankine, tau_1 <= t) with an associated flow;
+   * - linear softening of c and phi from their peak to their residual
+   *   values as the equivalent plastic strain grows to a given value. The
+   *   softening is explicit in the plastic strain: a step returns to the
+   *   surface of the plastic strain at its start, so each return stays
+   *   exact for linear surfaces and its tangent stays consistent. psi is
+   *   capped at the current phi.
+   *
+   * The return in principal stress space follows Clausen, Damkilde and
+   * Andersen (2006, 2007): every surface is a plane in the ordered frame,
+   * so the return is to one plane, to the line of two or to the point of
+   * three, sigma = sigma_trial - sum_i gamma_i D b_i with a_i . sigma =
+   * r_i, and it is the first of these (fewest planes first) with
+   * gamma_i >= 0 that lands in the ordered, admissible set. Without a
+   * cut-off below it, the apex tau = c cot(phi) closes the list. Each
+   * return has the algorithmic tangent D - D B (A^T D B)^-1 A^T D (zero at
+   * the apex). The equivalent plastic strain grows by sqrt(2/3 |d eps_p|^2)
+   * of the principal plastic strain step.
    */
   class MohrCoulomb : public HenckyPlasticity
   {
@@ -38,9 +54,35 @@ namespace mpm
                    double              plastic_strain) const override;
 
   private:
-    double cohesion;
-    double k;
-    double m;
+    /** A yield plane a . sigma <= r with flow direction b. */
+    struct Plane
+    {
+      Tensor<1, 3> a;
+      Tensor<1, 3> b;
+      double       r;
+    };
+
+    /**
+     * The planes in the ordered frame at a plastic strain: the Mohr-Coulomb
+     * plane, the planes that meet it at the edges tau_1 = tau_2 and
+     * tau_2 = tau_3, then, with a cut-off, tau_1, tau_2, tau_3 <= t.
+     */
+    std::vector<Plane>
+    planes(double plastic_strain) const;
+
+    /** Cohesion and friction angle at a plastic strain (softening). */
+    std::pair<double, double>
+    strength(double plastic_strain) const;
+
+    double peak_cohesion;
+    double residual_cohesion;
+    double peak_friction_angle;
+    double residual_friction_angle;
+    double dilatancy_angle;
+    /** Plastic strain at which the residual strength is reached; 0: none. */
+    double softening_plastic_strain;
+    bool   tension_cut_off;
+    double tensile_strength;
   };
 } // namespace mpm
 
