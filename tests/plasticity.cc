@@ -226,7 +226,7 @@ main(int argc, char **argv)
                   diagonal(std::exp(stretch(random) + bias),
                            std::exp(stretch(random) + bias),
                            std::exp(stretch(random) + bias));
-                start_plastic_strain = state.internal[6];
+                start_plastic_strain = state.internal[0];
                 state.step(*law, R * U * transpose(R) * state.F);
               }
             // Softening is explicit: a step returns to the surface of the
@@ -234,7 +234,7 @@ main(int argc, char **argv)
             // implicit, to the surface of its end.
             const Tensor<1, 3> tau = principal_tau(state);
             const double       f   = law->yield_function(
-              tau, mohr ? start_plastic_strain : state.internal[6]);
+              tau, mohr ? start_plastic_strain : state.internal[0]);
             worst = std::max(worst, f / (sigma_c + sigma_y));
             // Which return: the apex has three equal stresses, an edge two.
             const double scale = tau.norm() * 1e-9 + 1.;
@@ -346,7 +346,7 @@ main(int argc, char **argv)
             state.step(*law, diagonal(std::exp(eps), 1., 1.));
             const double tau_xx = determinant(state.F) * state.stress[0][0];
             const double tau_yy = determinant(state.F) * state.stress[1][1];
-            const double eps_p = state.internal[6];
+            const double eps_p = state.internal[0];
             if (eps_p > 0. && yield_at == 0.)
               yield_at = eps;
             // Mean stress elastic throughout.
@@ -420,7 +420,7 @@ main(int argc, char **argv)
         const double tau_x = J * state.stress[0][0];
         const double tau_y = J * state.stress[1][1];
         const double tau_z = J * state.stress[2][2];
-        if (state.internal[6] > 0. && yield_at == 0.)
+        if (state.internal[0] > 0. && yield_at == 0.)
           yield_at = e;
         if (e > e_y * 1.001)
           {
@@ -486,7 +486,7 @@ main(int argc, char **argv)
       {
         const double e = 2e-5 * n;
         state.step(*cut_off, diagonal(std::exp(e), 1., 1.));
-        if (state.internal[6] > 0. && yield_at == 0.)
+        if (state.internal[0] > 0. && yield_at == 0.)
           yield_at = e;
         if (e > e_t)
           {
@@ -519,10 +519,10 @@ main(int argc, char **argv)
     for (unsigned int n = 1; n <= 600; ++n)
       {
         const double e          = 1e-4 * n;
-        const double start_eps_p = state.internal[6];
+        const double start_eps_p = state.internal[0];
         state.step(*softening,
                    diagonal(std::exp(nu * e), std::exp(nu * e), std::exp(-e)));
-        if (state.internal[6] == 0.)
+        if (state.internal[0] == 0.)
           continue;
         const Tensor<1, 3> tau = principal_tau(state);
         edge_error = std::max(edge_error,
@@ -555,7 +555,7 @@ main(int argc, char **argv)
     {
       State state;
       state.step(*law, rotation(0.1, 0.2, 0.3) * diagonal(1.03, 0.99, 0.975));
-      const double eps_p = state.internal[6];
+      const double eps_p = state.internal[0];
       const auto   before = eigenvalues(state.stress);
       const Tensor<2, 3> R = rotation(0.9, -0.6, 0.4);
       const SymmetricTensor<2, 3> expected =
@@ -570,6 +570,6 @@ main(int argc, char **argv)
                          ": a rigid rotation rotates the stress and keeps "
                          "invariants and plastic strain, to 1e-9",
                        error < 1e-9 * sigma_c &&
-                         std::abs(state.internal[6] - eps_p) < 1e-14);
+                         std::abs(state.internal[0] - eps_p) < 1e-14);
     }
 }

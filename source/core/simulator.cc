@@ -193,11 +193,24 @@ namespace mpm
       mapping = std::make_unique<MappingQ<dim>>(1);
 
     // Every point carries as many internal variables as the largest law
-    // needs, named after that law.
+    // needs, named after that law. Laws that share a variable keep it at
+    // the same index (plastic_strain first), so every law's list must
+    // start the longest one; the names in the output are then right for
+    // every point.
     std::vector<std::string> internal_names;
     for (const auto &m : materials)
       if (m->n_internal_variables() > internal_names.size())
         internal_names = m->internal_variable_names();
+    for (const auto &m : materials)
+      {
+        const std::vector<std::string> names = m->internal_variable_names();
+        AssertThrow(std::equal(names.begin(), names.end(),
+                               internal_names.begin()),
+                    ExcMessage("The internal variables of material '" +
+                               m->name() +
+                               "' do not start those of the other laws of "
+                               "the scene."));
+      }
     points = std::make_unique<MaterialPoints<dim>>(triangulation,
                                                    *mapping,
                                                    internal_names,

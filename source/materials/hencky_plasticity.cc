@@ -8,7 +8,15 @@ namespace mpm
                                      const std::string &     name,
                                      const std::string &     section_path)
     : Material(prm, name, section_path)
-  {}
+  {
+    internal_names = {"plastic_strain",
+                      "elastic_b_minus_I_xx",
+                      "elastic_b_minus_I_yy",
+                      "elastic_b_minus_I_zz",
+                      "elastic_b_minus_I_xy",
+                      "elastic_b_minus_I_xz",
+                      "elastic_b_minus_I_yz"};
+  }
 
 
 
@@ -31,7 +39,7 @@ namespace mpm
   {
     SymmetricTensor<2, 3> b_old = unit_symmetric_tensor<3>();
     for (unsigned int k = 0; k < 6; ++k)
-      b_old.access_raw_entry(k) += old_internal_variables[k];
+      b_old.access_raw_entry(k) += old_internal_variables[elastic_b_minus_I + k];
     const Tensor<2, 3> f = kinematics.F_new * invert(kinematics.F_old);
     const SymmetricTensor<2, 3> b_trial =
       symmetrize(Tensor<2, 3>(f * Tensor<2, 3>(b_old) * transpose(f)));
@@ -81,7 +89,7 @@ namespace mpm
       }
     b_new -= unit_symmetric_tensor<3>();
     for (unsigned int k = 0; k < 6; ++k)
-      internal_variables[k] = b_new.access_raw_entry(k);
+      internal_variables[elastic_b_minus_I + k] = b_new.access_raw_entry(k);
     internal_variables[equivalent_plastic_strain] +=
       step.result.plastic_strain_increment;
   }

@@ -17,14 +17,21 @@ namespace mpm
   {
     const Tensor<2, 3> &        L = kinematics.velocity_gradient;
     const SymmetricTensor<2, 3> D = symmetrize(L);
-    const Tensor<2, 3>          W = 0.5 * (L - transpose(L));
-    const Tensor<2, 3>          sigma(stress);
-    // W sigma - sigma W is symmetric for symmetric sigma and skew W.
-    const SymmetricTensor<2, 3> rotation =
-      symmetrize(Tensor<2, 3>(W * sigma - sigma * W));
     stress += kinematics.dt *
               (lambda * trace(D) * unit_symmetric_tensor<3>() + 2. * mu * D +
-               rotation);
+               jaumann_rotation(L, stress));
+  }
+
+
+
+  SymmetricTensor<2, 3>
+  LinearElastic::jaumann_rotation(const Tensor<2, 3> &         L,
+                                  const SymmetricTensor<2, 3> &stress)
+  {
+    const Tensor<2, 3> W = 0.5 * (L - transpose(L));
+    const Tensor<2, 3> sigma(stress);
+    // W sigma - sigma W is symmetric for symmetric sigma and skew W.
+    return symmetrize(Tensor<2, 3>(W * sigma - sigma * W));
   }
 
 

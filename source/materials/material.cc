@@ -1,4 +1,5 @@
 #include <mpm/core/input_error.h>
+#include <mpm/materials/drucker_prager_viscoplastic.h>
 #include <mpm/materials/hencky.h>
 #include <mpm/materials/linear_elastic.h>
 #include <mpm/materials/material.h>
@@ -16,7 +17,8 @@ namespace mpm
     prm.declare_entry("Model",
                       "linear elastic",
                       Patterns::Selection("linear elastic|neo-Hookean|Hencky|"
-                                          "Mohr-Coulomb|von Mises"),
+                                          "Mohr-Coulomb|von Mises|"
+                                          "Drucker-Prager viscoplastic"),
                       "Constitutive law. 'linear elastic': hypoelastic, "
                       "integrated with the Jaumann stress rate as in "
                       "Wieckowski (2004). 'neo-Hookean': compressible "
@@ -24,7 +26,9 @@ namespace mpm
                       "'Hencky': hyperelastic, Kirchhoff stress linear in the "
                       "logarithmic strain. 'Mohr-Coulomb' and 'von Mises': "
                       "elastoplastic at finite strain with Hencky elasticity "
-                      "(subsections of the same names).");
+                      "(subsections of the same names). 'Drucker-Prager "
+                      "viscoplastic': Wieckowski's (2004) cohesionless "
+                      "Perzyna law with the Jaumann rate (its subsection).");
     prm.declare_entry("Density",
                       "1000",
                       Patterns::Double(0.),
@@ -39,6 +43,7 @@ namespace mpm
                       "Poisson's ratio nu, -1 < nu < 0.5.");
     MohrCoulomb::declare_parameters(prm);
     VonMises::declare_parameters(prm);
+    DruckerPragerViscoplastic::declare_parameters(prm);
   }
 
 
@@ -59,9 +64,14 @@ namespace mpm
       return std::make_unique<MohrCoulomb>(prm, name, section_path);
     if (model == "von Mises")
       return std::make_unique<VonMises>(prm, name, section_path);
+    if (model == "Drucker-Prager viscoplastic")
+      return std::make_unique<DruckerPragerViscoplastic>(prm,
+                                                         name,
+                                                         section_path);
     throw InputError(section_path + "/Model = '" + model +
                      "' is not a known law; use one of: linear elastic, "
-                     "neo-Hookean, Hencky, Mohr-Coulomb, von Mises.");
+                     "neo-Hookean, Hencky, Mohr-Coulomb, von Mises, "
+                     "Drucker-Prager viscoplastic.");
   }
 
 

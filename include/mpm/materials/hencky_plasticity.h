@@ -17,8 +17,8 @@ namespace mpm
    * objective: a rigid rotation of the step rotates b_e and the stress and
    * changes no invariant.
    *
-   * Internal variables: b_e - I (6 entries, so that zero is the natural
-   * state) and the equivalent plastic strain.
+   * Internal variables: the equivalent plastic strain, then b_e - I (6
+   * entries, so that zero is the natural state).
    *
    * The spatial tangent is the consistent one: with D_alg = d tau_a /
    * d eps_b from the return, in the eigenbasis n_a of b_e,
@@ -31,8 +31,14 @@ namespace mpm
   class HenckyPlasticity : public Material
   {
   public:
-    /** Index of the equivalent plastic strain among the internal ones. */
-    static constexpr unsigned int equivalent_plastic_strain = 6;
+    /**
+     * Index of the equivalent plastic strain among the internal ones: the
+     * first, as in every plastic law, so that a scene that mixes laws
+     * shows it under one name.
+     */
+    static constexpr unsigned int equivalent_plastic_strain = 0;
+    /** Index of the first of the 6 entries of b_e - I. */
+    static constexpr unsigned int elastic_b_minus_I = 1;
 
     void
     update_stress(const StepKinematics &   kinematics,
@@ -44,24 +50,6 @@ namespace mpm
                     const SymmetricTensor<2, 3> &  old_stress,
                     const ArrayView<const double> &old_internal_variables)
       const override;
-
-    unsigned int
-    n_internal_variables() const override
-    {
-      return 7;
-    }
-
-    std::vector<std::string>
-    internal_variable_names() const override
-    {
-      return {"elastic_b_minus_I_xx",
-              "elastic_b_minus_I_yy",
-              "elastic_b_minus_I_zz",
-              "elastic_b_minus_I_xy",
-              "elastic_b_minus_I_xz",
-              "elastic_b_minus_I_yz",
-              "plastic_strain"};
-    }
 
     /** The result of a return in principal stress space. */
     struct Return

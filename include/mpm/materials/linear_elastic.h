@@ -31,6 +31,15 @@ namespace mpm
                     const SymmetricTensor<2, 3> &  old_stress,
                     const ArrayView<const double> &old_internal_variables)
       const override;
+
+    /**
+     * The rotation part of the Jaumann rate, W sigma - sigma W, with W the
+     * spin of the velocity gradient L: traceless, so it turns the deviator
+     * only.
+     */
+    static SymmetricTensor<2, 3>
+    jaumann_rotation(const Tensor<2, 3> &         L,
+                     const SymmetricTensor<2, 3> &stress);
   };
 } // namespace mpm
 

@@ -84,18 +84,21 @@ namespace mpm
       const SymmetricTensor<2, 3> &  old_stress,
       const ArrayView<const double> &old_internal_variables) const;
 
-    /** How many internal variables a point of this law carries. */
-    virtual unsigned int
-    n_internal_variables() const
-    {
-      return 0;
-    }
-
-    /** Their names in the output, one per variable. */
-    virtual std::vector<std::string>
+    /**
+     * The names of the internal variables a point of this law carries, in
+     * the output. A variable that several laws share (plastic_strain) has
+     * the same index in each.
+     */
+    const std::vector<std::string> &
     internal_variable_names() const
     {
-      return {};
+      return internal_names;
+    }
+
+    unsigned int
+    n_internal_variables() const
+    {
+      return internal_names.size();
     }
 
     const std::string &
@@ -131,6 +134,8 @@ namespace mpm
     double      poissons_ratio;
     double      lambda;
     double      mu;
+    /** Set by a law that carries internal variables, in its constructor. */
+    std::vector<std::string> internal_names;
   };
 } // namespace mpm
 
