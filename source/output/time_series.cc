@@ -51,6 +51,9 @@ namespace mpm
         file << ",mass";
         for (unsigned int d = 0; d < dim; ++d)
           file << ",centre_of_mass_" << axes[d];
+        file << ",points,max_speed";
+        for (unsigned int d = 0; d < dim; ++d)
+          file << ",min_" << axes[d] << ",max_" << axes[d];
         for (unsigned int k = 0; k < tracked_ids.size(); ++k)
           {
             for (unsigned int d = 0; d < dim; ++d)
@@ -103,6 +106,26 @@ namespace mpm
       }
     MPI_Allreduce(MPI_IN_PLACE, sums.data(), sums.size(), MPI_DOUBLE, MPI_SUM,
                   communicator);
+    // The largest speed, then -min and max of each coordinate: the extent
+    // of the material (toe and height of a collapse).
+    std::vector<double> largest(1 + 2 * dim,
+                                -std::numeric_limits<double>::max());
+    for (const auto &particle : points.handler())
+      {
+        largest[0] = std::max(
+          largest[0],
+          Layout::get_velocity(particle.get_properties()).norm());
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            largest[1 + 2 * d] =
+              std::max(largest[1 + 2 * d], -particle.get_location()[d]);
+            largest[2 + 2 * d] =
+              std::max(largest[2 + 2 * d], particle.get_location()[d]);
+          }
+      }
+    MPI_Allreduce(MPI_IN_PLACE, largest.data(), largest.size(), MPI_DOUBLE,
+                  MPI_MAX, communicator);
+    const types::particle_index n_points = points.n_global_points();
 
     Diagnostics<dim> result;
     result.kinetic_energy       = sums[0];
@@ -122,6 +145,9 @@ namespace mpm
         file << ',' << result.mass;
         for (unsigned int d = 0; d < dim; ++d)
           file << ',' << sums[4 + dim + d] / result.mass;
+        file << ',' << n_points << ',' << largest[0];
+        for (unsigned int d = 0; d < dim; ++d)
+          file << ',' << -largest[1 + 2 * d] << ',' << largest[2 + 2 * d];
         for (unsigned int k = tracked; k < sums.size(); ++k)
           file << ',' << sums[k];
         file << '\n';
