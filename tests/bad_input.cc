@@ -81,6 +81,17 @@ main(int argc, char **argv)
                  "Materials/rubber/Mohr-Coulomb/Cohesion=1000",
                  "Materials/rubber/Mohr-Coulomb/Softening plastic strain=0.1",
                  "Materials/rubber/Mohr-Coulomb/Residual cohesion=2000"}));
+  run_case("geostatic stress without gravity",
+           with({"Materials/rubber/Model=linear elastic",
+                 "Bodies/block/Initial stress=geostatic"}));
+  run_case("geostatic stress in a hyperelastic law",
+           with({"Gravity=0, -9.81", "Bodies/block/Initial stress=geostatic"}));
+  run_case("geostatic stress outside the yield surface",
+           with({"Gravity=0, -9.81",
+                 "Materials/rubber/Model=Mohr-Coulomb",
+                 "Materials/rubber/Mohr-Coulomb/Friction angle=30",
+                 "Bodies/block/Initial stress=geostatic",
+                 "Bodies/block/K0=0.1"}));
   run_case("tension cut-off beyond the apex",
            with({"Materials/rubber/Model=Mohr-Coulomb",
                  "Materials/rubber/Mohr-Coulomb/Cohesion=1000",

@@ -48,6 +48,20 @@ namespace mpm
                       "Gauss: points at the n x n (x n) Gauss points, with "
                       "the Gauss weights (the material points of a FE "
                       "solution with the same quadrature).");
+    prm.declare_entry("Initial stress", "none",
+                      Patterns::Selection("none|geostatic"),
+                      "none: the body starts unstressed, and gravity acts "
+                      "on it from rest. geostatic: the K0 procedure, "
+                      "vertical stress -rho g depth below the body's top "
+                      "(its highest point; a flat free surface) and "
+                      "horizontal stress K0 times that. Needs Gravity and a "
+                      "law that can hold a stress at rest (linear elastic, "
+                      "Mohr-Coulomb, von Mises, Drucker-Prager "
+                      "viscoplastic).");
+    prm.declare_entry("K0", "0.5", Patterns::Double(0.),
+                      "Ratio of horizontal to vertical stress of the "
+                      "geostatic stress; Jaky's 1 - sin(phi) is the usual "
+                      "choice for normally consolidated soil.");
     prm.declare_entry("Initial velocity", "0; 0; 0", Patterns::Anything(),
                       "Initial velocity as a function of position x, y (, z) "
                       "and the constant pi: one expression per component, "
@@ -65,6 +79,9 @@ namespace mpm
                   const std::vector<std::string> &material_names)
     : body_name(name)
   {
+    geostatic_k0 = prm.get("Initial stress") == "geostatic" ?
+                     prm.get_double("K0") :
+                     -1.;
     const unsigned int n = prm.get_integer("Points per cell direction");
     if (prm.get("Point placement") == "Gauss")
       placement_1d = QGauss<1>(n);

@@ -216,6 +216,7 @@ namespace mpm
                                                    internal_names,
                                                    scheme_name != "explicit");
     points->seed(bodies, materials, basis);
+    points->apply_geostatic_stress(bodies, materials, gravity);
     loads = std::make_unique<PointLoads<dim>>(prm,
                                               scheme_name == "quasi-static",
                                               end_time);

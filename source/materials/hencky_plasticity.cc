@@ -1,6 +1,8 @@
+#include <mpm/core/input_error.h>
 #include <mpm/materials/hencky_plasticity.h>
 
 #include <cmath>
+#include <sstream>
 
 namespace mpm
 {
@@ -92,6 +94,40 @@ namespace mpm
       internal_variables[elastic_b_minus_I + k] = b_new.access_raw_entry(k);
     internal_variables[equivalent_plastic_strain] +=
       step.result.plastic_strain_increment;
+  }
+
+
+
+  double
+  HenckyPlasticity::initialize_stress(
+    const SymmetricTensor<2, 3> &stress,
+    const ArrayView<double> &    internal_variables,
+    const std::string &          who) const
+  {
+    const auto eigen =
+      eigenvectors(stress, SymmetricTensorEigenvectorMethod::jacobi);
+    Tensor<1, 3> tau;
+    for (unsigned int a = 0; a < 3; ++a)
+      tau[a] = eigen[a].first;
+    const double scale = tau.norm() + 1.;
+    if (yield_function(tau, 0.) > 1e-10 * scale)
+      {
+        std::ostringstream message;
+        message << who << ": the initial stress (principal " << tau[0]
+                << ", " << tau[1] << ", " << tau[2]
+                << " Pa) lies outside the yield surface of material '"
+                << name() << "'; choose K0 nearer 1, or start from rest.";
+        throw InputError(message.str());
+      }
+    const Tensor<1, 3>    eps = invert(principal_stiffness()) * tau;
+    SymmetricTensor<2, 3> b_minus_I;
+    for (unsigned int a = 0; a < 3; ++a)
+      b_minus_I += (std::exp(2. * eps[a]) - 1.) *
+                   symmetrize(outer_product(eigen[a].second, eigen[a].second));
+    for (unsigned int k = 0; k < 6; ++k)
+      internal_variables[elastic_b_minus_I + k] =
+        b_minus_I.access_raw_entry(k);
+    return elastic_energy_density(stress);
   }
 
 

@@ -24,6 +24,16 @@ namespace mpm
 
 
 
+  double
+  LinearElastic::initialize_stress(const SymmetricTensor<2, 3> &stress,
+                                   const ArrayView<double> &,
+                                   const std::string &) const
+  {
+    return elastic_energy_density(stress);
+  }
+
+
+
   SymmetricTensor<2, 3>
   LinearElastic::jaumann_rotation(const Tensor<2, 3> &         L,
                                   const SymmetricTensor<2, 3> &stress)

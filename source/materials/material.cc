@@ -149,6 +149,30 @@ namespace mpm
 
 
   double
+  Material::initialize_stress(const SymmetricTensor<2, 3> &,
+                              const ArrayView<double> &,
+                              const std::string &who) const
+  {
+    throw InputError(who + ": material '" + name() +
+                     "' is hyperelastic without internal state, so it "
+                     "cannot start under stress; use a rate or plastic law "
+                     "or Initial stress = none.");
+  }
+
+
+
+  double
+  Material::elastic_energy_density(const SymmetricTensor<2, 3> &stress) const
+  {
+    const double p = trace(stress);
+    return 0.5 * ((stress * stress) -
+                  lambda / (3. * lambda + 2. * mu) * p * p) /
+           (2. * mu);
+  }
+
+
+
+  double
   Material::p_wave_speed() const
   {
     return std::sqrt(p_wave_modulus() / rho);

@@ -199,6 +199,79 @@ namespace mpm
 
   template <int dim>
   void
+  MaterialPoints<dim>::apply_geostatic_stress(
+    const std::vector<Body<dim>> &                bodies,
+    const std::vector<std::unique_ptr<Material>> &materials,
+    const Tensor<1, dim> &                        gravity)
+  {
+    bool any = false;
+    for (const Body<dim> &body : bodies)
+      any = any || body.geostatic();
+    if (!any)
+      return;
+    if (gravity.norm() == 0.)
+      throw InputError("Bodies: Initial stress = geostatic needs a non-zero "
+                       "Gravity.");
+    const Tensor<1, dim> down = gravity / gravity.norm();
+
+    // The top of each body: the largest height -down.x, plus half the
+    // point's extent along gravity.
+    std::vector<double> top(bodies.size(),
+                            -std::numeric_limits<double>::max());
+    for (const auto &particle : particle_handler)
+      {
+        const ArrayView<const double> p = particle.get_properties();
+        double                        half_extent = 0.;
+        for (unsigned int d = 0; d < dim; ++d)
+          half_extent += 0.5 * std::abs(down[d]) * p[Layout::reference_size + d];
+        double &body_top = top[static_cast<unsigned int>(p[Layout::body_id])];
+        body_top =
+          std::max(body_top, -(down * particle.get_location()) + half_extent);
+      }
+    Utilities::MPI::max(top, get_communicator(), top);
+
+    Tensor<1, 3> down_3d;
+    for (unsigned int d = 0; d < dim; ++d)
+      down_3d[d] = down[d];
+    const SymmetricTensor<2, 3> vertical =
+      symmetrize(outer_product(down_3d, down_3d));
+    // A law can refuse the stress on one rank only: collect, then throw on
+    // every rank.
+    std::string refusal;
+    for (auto &particle : particle_handler)
+      {
+        const ArrayView<double> p    = particle.get_properties();
+        const unsigned int      body = static_cast<unsigned int>(p[Layout::body_id]);
+        if (!bodies[body].geostatic() || !refusal.empty())
+          continue;
+        const Material &material =
+          *materials[static_cast<unsigned int>(p[Layout::material_id])];
+        const double depth = top[body] + down * particle.get_location();
+        const double sigma_v = -material.density() * gravity.norm() * depth;
+        const SymmetricTensor<2, 3> stress =
+          bodies[body].k0() * sigma_v * (unit_symmetric_tensor<3>() - vertical) +
+          sigma_v * vertical;
+        Layout::set_stress(p, stress);
+        try
+          {
+            p[Layout::work_density] = material.initialize_stress(
+              stress,
+              ArrayView<double>(&p[Layout::internal_variables],
+                                material.n_internal_variables()),
+              "Bodies/" + bodies[body].name() + "/Initial stress = geostatic");
+          }
+        catch (const InputError &error)
+          {
+            refusal = error.what();
+          }
+      }
+    throw_input_error_on_every_rank(refusal, get_communicator());
+  }
+
+
+
+  template <int dim>
+  void
   MaterialPoints<dim>::sort()
   {
     lost_positions.clear();

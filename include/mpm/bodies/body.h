@@ -75,6 +75,20 @@ namespace mpm
       return placement_1d.weight(index % placement_1d.size());
     }
 
+    /** Whether the body starts under geostatic stress. */
+    bool
+    geostatic() const
+    {
+      return geostatic_k0 >= 0.;
+    }
+
+    /** Horizontal over vertical stress of the geostatic state. */
+    double
+    k0() const
+    {
+      return geostatic_k0;
+    }
+
   private:
     enum class Shape
     {
@@ -91,6 +105,8 @@ namespace mpm
     double                  radius = 0.;
     std::vector<Point<dim>> polygon;
     unsigned int            material = 0;
+    /** K0 of the geostatic stress; negative: no initial stress. */
+    double                  geostatic_k0 = -1.;
     Quadrature<1>           placement_1d;
     Quadrature<dim>         placement;
     std::unique_ptr<FunctionParser<dim>> velocity;

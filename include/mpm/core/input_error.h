@@ -1,6 +1,8 @@
 #ifndef mpm_core_input_error_h
 #define mpm_core_input_error_h
 
+#include <deal.II/base/mpi.h>
+
 #include <stdexcept>
 #include <string>
 
@@ -32,6 +34,26 @@ namespace mpm
       : std::runtime_error(message)
     {}
   };
+
+  /**
+   * For input errors that only some ranks can see (they depend on the
+   * points a rank owns): every rank calls this with its message, empty if
+   * it found nothing, and all throw the InputError of the lowest rank that
+   * found one.
+   */
+  inline void
+  throw_input_error_on_every_rank(const std::string &message,
+                                  const MPI_Comm     communicator)
+  {
+    const unsigned int rank =
+      dealii::Utilities::MPI::this_mpi_process(communicator);
+    const unsigned int first = dealii::Utilities::MPI::min(
+      message.empty() ? dealii::numbers::invalid_unsigned_int : rank,
+      communicator);
+    if (first != dealii::numbers::invalid_unsigned_int)
+      throw InputError(
+        dealii::Utilities::MPI::broadcast(communicator, message, first));
+  }
 } // namespace mpm
 
 #endif

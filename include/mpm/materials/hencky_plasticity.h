@@ -51,6 +51,15 @@ namespace mpm
                     const ArrayView<const double> &old_internal_variables)
       const override;
 
+    /**
+     * b_e from the stress (Kirchhoff = Cauchy at F = I); a stress outside
+     * the yield surface is refused.
+     */
+    double
+    initialize_stress(const SymmetricTensor<2, 3> &stress,
+                      const ArrayView<double> &    internal_variables,
+                      const std::string &          who) const override;
+
     /** The result of a return in principal stress space. */
     struct Return
     {

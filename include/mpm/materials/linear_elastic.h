@@ -32,6 +32,12 @@ namespace mpm
                     const ArrayView<const double> &old_internal_variables)
       const override;
 
+    /** The stress itself is the state: nothing else to set. */
+    double
+    initialize_stress(const SymmetricTensor<2, 3> &stress,
+                      const ArrayView<double> &    internal_variables,
+                      const std::string &          who) const override;
+
     /**
      * The rotation part of the Jaumann rate, W sigma - sigma W, with W the
      * spin of the velocity gradient L: traceless, so it turns the deviator

@@ -85,6 +85,17 @@ namespace mpm
       const ArrayView<const double> &old_internal_variables) const;
 
     /**
+     * Put a point at rest (F = I) under `stress`: set the internal
+     * variables that hold it, and return the elastic energy density stored.
+     * Laws whose stress is a function of F alone cannot hold a stress at
+     * F = I; they refuse with an InputError naming `who`.
+     */
+    virtual double
+    initialize_stress(const SymmetricTensor<2, 3> &stress,
+                      const ArrayView<double> &    internal_variables,
+                      const std::string &          who) const;
+
+    /**
      * The names of the internal variables a point of this law carries, in
      * the output. A variable that several laws share (plastic_strain) has
      * the same index in each.
@@ -124,6 +135,10 @@ namespace mpm
     p_wave_speed() const;
 
   protected:
+    /** Linear elastic energy density 1/2 sigma : C^-1 : sigma. */
+    double
+    elastic_energy_density(const SymmetricTensor<2, 3> &stress) const;
+
     Material(const ParameterHandler &prm,
              const std::string &     name,
              const std::string &     section_path);

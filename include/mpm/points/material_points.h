@@ -51,6 +51,19 @@ namespace mpm
          const GridBasis<dim> &                        basis);
 
     /**
+     * Start the points of geostatic bodies under the K0 stress: vertical
+     * stress -rho |g| depth along gravity, depth below the top of the body
+     * (its highest point plus half that point's extent), K0 times it
+     * across. Sets the stress, the law's internal state and the stored
+     * energy of each point.
+     */
+    void
+    apply_geostatic_stress(
+      const std::vector<Body<dim>> &                bodies,
+      const std::vector<std::unique_ptr<Material>> &materials,
+      const Tensor<1, dim> &                        gravity);
+
+    /**
      * Put every point into the cell (and onto the rank) that contains its
      * current position. A point that leaves the grid, or moves beyond the
      * cells next to its old one, stops the run with a RunError naming its
