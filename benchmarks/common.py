@@ -114,3 +114,67 @@ def timer_sections(stdout):
         if m:
             sections[m.group(1)] = float(m.group(5))
     return sections
+
+
+def read_vtu(filename):
+    """Points and point data of one VTU piece written by deal.II (binary,
+    zlib-compressed or raw): {'points': [(x, y, z)], name: [values]}; a
+    vector field gives tuples."""
+    import base64
+    import struct
+    import zlib
+    with open(filename) as f:
+        text = f.read()
+    compressed = "vtkZLibDataCompressor" in text
+
+    def decode(payload, kind):
+        payload = "".join(payload.split())
+        if compressed:
+            head = base64.b64decode(payload[:8])
+            n_blocks = struct.unpack("<I", head[:4])[0]
+            header_chars = 4 * ((4 * (3 + n_blocks) + 2) // 3)
+            header = struct.unpack("<%dI" % (3 + n_blocks),
+                                   base64.b64decode(payload[:header_chars]))
+            data = base64.b64decode(payload[header_chars:])
+            raw, start = b"", 0
+            for size in header[3:]:
+                raw += zlib.decompress(data[start:start + size])
+                start += size
+        else:
+            raw = base64.b64decode(payload)[4:]
+        code = {"Float32": "f", "Float64": "d", "Int32": "i",
+                "UInt8": "B", "Int64": "q"}[kind]
+        return struct.unpack("<%d%s" % (len(raw) // struct.calcsize(code),
+                                        code), raw)
+
+    result = {}
+    for attributes, payload in re.findall(
+            r"<DataArray([^>]*)>(.*?)</DataArray>", text, re.S):
+        kind = re.search(r'type="(\w+)"', attributes).group(1)
+        name = re.search(r'Name="([^"]+)"', attributes)
+        components = re.search(r'NumberOfComponents="(\d+)"', attributes)
+        values = decode(payload, kind)
+        n = int(components.group(1)) if components else 1
+        if n > 1:
+            values = [tuple(values[i:i + n])
+                      for i in range(0, len(values), n)]
+        if name is None:
+            if "points" not in result:
+                result["points"] = values
+        else:
+            result[name.group(1)] = values
+    return result
+
+
+def snapshots(directory, name="points"):
+    """(time, piece files) of each snapshot listed in name.pvd."""
+    with open(os.path.join(directory, name + ".pvd")) as f:
+        entries = re.findall(r'timestep="([^"]+)"[^>]*file="([^"]+)"',
+                             f.read())
+    result = []
+    for time_value, pvtu in entries:
+        with open(os.path.join(directory, pvtu)) as f:
+            pieces = re.findall(r'Source="([^"]+)"', f.read())
+        result.append((float(time_value),
+                       [os.path.join(directory, p) for p in pieces]))
+    return result
