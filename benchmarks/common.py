@@ -117,9 +117,10 @@ def timer_sections(stdout):
 
 
 def read_vtu(filename):
-    """Points and point data of one VTU piece written by deal.II (binary,
-    zlib-compressed or raw): {'points': [(x, y, z)], name: [values]}; a
-    vector field gives tuples."""
+    """Points and point data of one VTU piece written by deal.II (base64
+    binary, zlib-compressed or not, or ascii): {'points': [(x, y, z)],
+    name: [values]}; a vector field gives tuples. An empty piece gives
+    empty lists."""
     import base64
     import struct
     import zlib
@@ -153,7 +154,12 @@ def read_vtu(filename):
         kind = re.search(r'type="(\w+)"', attributes).group(1)
         name = re.search(r'Name="([^"]+)"', attributes)
         components = re.search(r'NumberOfComponents="(\d+)"', attributes)
-        values = decode(payload, kind)
+        if 'format="ascii"' in attributes:
+            values = tuple(float(v) for v in payload.split())
+        elif not payload.strip():
+            values = ()
+        else:
+            values = decode(payload, kind)
         n = int(components.group(1)) if components else 1
         if n > 1:
             values = [tuple(values[i:i + n])

@@ -54,7 +54,9 @@ namespace mpm
                       "on it from rest. geostatic: the K0 procedure, "
                       "vertical stress -rho g depth below the body's top "
                       "(its highest point; a flat free surface) and "
-                      "horizontal stress K0 times that. Needs Gravity and a "
+                      "horizontal stress K0 times that. Each body counts "
+                      "only its own weight, so a body under another starts "
+                      "out of equilibrium. Needs Gravity and a "
                       "law that can hold a stress at rest (linear elastic, "
                       "Mohr-Coulomb, von Mises, Drucker-Prager "
                       "viscoplastic).");

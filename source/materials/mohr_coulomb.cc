@@ -42,7 +42,10 @@ namespace mpm
                       "strength (Rankine plane, associated flow).");
     prm.declare_entry("Tensile strength", "0", Patterns::Double(0.),
                       "Tensile strength t [Pa] of the cut-off, at most "
-                      "c cot(phi), where Mohr-Coulomb itself has its apex.");
+                      "c cot(phi), where Mohr-Coulomb itself has its apex. "
+                      "It does not soften; once softening brings the apex "
+                      "below t, the apex limits the tension. Plastic strain "
+                      "at the cut-off counts towards softening too.");
     prm.leave_subsection();
   }
 

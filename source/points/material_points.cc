@@ -260,7 +260,7 @@ namespace mpm
                                 material.n_internal_variables()),
               "Bodies/" + bodies[body].name() + "/Initial stress = geostatic");
           }
-        catch (const InputError &error)
+        catch (const std::exception &error)
           {
             refusal = error.what();
           }

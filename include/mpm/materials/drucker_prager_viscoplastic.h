@@ -46,7 +46,8 @@ namespace mpm
     /**
      * Return the trial deviator to the viscoplastic state of the step at
      * pressure p > 0 and shear modulus G: the new deviator, and de added
-     * to the plastic strain. Shared with the granular law.
+     * to the plastic strain. Separate from the pressure, so that a law with
+     * its own pressure ([W] eq. 24) can reuse it.
      */
     std::pair<SymmetricTensor<2, 3>, double>
     viscoplastic_return(const SymmetricTensor<2, 3> &trial_deviator,
