@@ -160,10 +160,19 @@ namespace mpm
   MohrCoulomb::yield_function(const Tensor<1, 3> &tau,
                               const double        plastic_strain) const
   {
+    return largest_violation(planes(plastic_strain), tau);
+  }
+
+
+
+  double
+  MohrCoulomb::largest_violation(const std::vector<Plane> &surfaces,
+                                 const Tensor<1, 3> &      tau)
+  {
     Tensor<1, 3> sorted = tau;
     std::sort(&sorted[0], &sorted[0] + 3, std::greater<double>());
     double f = -std::numeric_limits<double>::max();
-    for (const Plane &plane : planes(plastic_strain))
+    for (const Plane &plane : surfaces)
       f = std::max(f, plane.a * sorted - plane.r);
     return f;
   }
@@ -174,11 +183,12 @@ namespace mpm
   MohrCoulomb::return_to_yield_surface(const Tensor<1, 3> &trial_tau,
                                        const double plastic_strain) const
   {
-    const Tensor<2, 3> D = principal_stiffness();
-    Return             r;
+    const Tensor<2, 3>       D        = principal_stiffness();
+    const std::vector<Plane> surfaces = planes(plastic_strain);
+    Return                   r;
     r.tau     = trial_tau;
     r.tangent = D;
-    if (yield_function(trial_tau, plastic_strain) <= 0.)
+    if (largest_violation(surfaces, trial_tau) <= 0.)
       return r;
 
     // Work in the ordered frame: sigma_1 >= sigma_2 >= sigma_3.
@@ -190,7 +200,6 @@ namespace mpm
     for (unsigned int i = 0; i < 3; ++i)
       sigma_trial[i] = trial_tau[order[i]];
 
-    const std::vector<Plane> surfaces = planes(plastic_strain);
     const double tolerance = 1e-12 * (surfaces[0].r + sigma_trial.norm() + 1.);
     auto admissible = [&](const Tensor<1, 3> &s) {
       if (s[0] < s[1] - tolerance || s[1] < s[2] - tolerance)

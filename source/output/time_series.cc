@@ -81,12 +81,22 @@ namespace mpm
     const unsigned int  n_tracked = tracked_ids.size();
     const unsigned int  tracked   = 4 + 2 * dim;
     std::vector<double> sums(tracked + 2 * dim * n_tracked, 0.);
+    // The largest speed, then -min and max of each coordinate: the extent
+    // of the material (toe and height of a collapse).
+    std::vector<double> largest(1 + 2 * dim,
+                                -std::numeric_limits<double>::max());
     for (const auto &particle : points.handler())
       {
         const ArrayView<const double> p = particle.get_properties();
         const double                  m = p[Layout::mass];
         const Tensor<1, dim>          v = Layout::get_velocity(p);
         const Point<dim> &            x = particle.get_location();
+        largest[0] = std::max(largest[0], v.norm());
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            largest[1 + 2 * d] = std::max(largest[1 + 2 * d], -x[d]);
+            largest[2 + 2 * d] = std::max(largest[2 + 2 * d], x[d]);
+          }
         sums[0] += 0.5 * m * v.norm_square();
         sums[1] += p[Layout::work_density] * p[Layout::reference_volume];
         sums[2] -= m * (gravity * x);
@@ -106,23 +116,6 @@ namespace mpm
       }
     MPI_Allreduce(MPI_IN_PLACE, sums.data(), sums.size(), MPI_DOUBLE, MPI_SUM,
                   communicator);
-    // The largest speed, then -min and max of each coordinate: the extent
-    // of the material (toe and height of a collapse).
-    std::vector<double> largest(1 + 2 * dim,
-                                -std::numeric_limits<double>::max());
-    for (const auto &particle : points.handler())
-      {
-        largest[0] = std::max(
-          largest[0],
-          Layout::get_velocity(particle.get_properties()).norm());
-        for (unsigned int d = 0; d < dim; ++d)
-          {
-            largest[1 + 2 * d] =
-              std::max(largest[1 + 2 * d], -particle.get_location()[d]);
-            largest[2 + 2 * d] =
-              std::max(largest[2 + 2 * d], particle.get_location()[d]);
-          }
-      }
     MPI_Allreduce(MPI_IN_PLACE, largest.data(), largest.size(), MPI_DOUBLE,
                   MPI_MAX, communicator);
     const types::particle_index n_points = points.n_global_points();

@@ -70,6 +70,11 @@ namespace mpm
     std::vector<Plane>
     planes(double plastic_strain) const;
 
+    /** max_i (a_i . sigma - r_i) over the planes, sigma sorted descending. */
+    static double
+    largest_violation(const std::vector<Plane> &surfaces,
+                      const Tensor<1, 3> &      tau);
+
     /** Cohesion and friction angle at a plastic strain (softening). */
     std::pair<double, double>
     strength(double plastic_strain) const;

@@ -49,13 +49,13 @@ namespace mpm
 
     ImplicitIntegrator(const bool                                    dynamic,
                        ParameterHandler &                            prm,
-                          MaterialPoints<dim> &                         points,
-                          const GridBasis<dim> &                        basis,
-                          const DirichletConditions<dim> &              dirichlet,
-                          const std::vector<std::unique_ptr<Material>> &materials,
-                          const Tensor<1, dim> &                        gravity,
-                          ConditionalOStream &                          pcout,
-                          TimerOutput &                                 timer);
+                       MaterialPoints<dim> &                         points,
+                       const GridBasis<dim> &                        basis,
+                       const DirichletConditions<dim> &              dirichlet,
+                       const std::vector<std::unique_ptr<Material>> &materials,
+                       const Tensor<1, dim> &                        gravity,
+                       ConditionalOStream &                          pcout,
+                       TimerOutput &                                 timer);
 
     /**
      * Solve one step and move the points. `load_factor` scales gravity and
