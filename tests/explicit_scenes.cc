@@ -9,7 +9,16 @@
 //   velocity v0 cos(omega_1 t) / (beta_1 L) within 3 % of its amplitude
 //   over 40 s, with each update scheme, on 32 cells;
 // - two elastic disks colliding: momentum stays zero to round-off, mass is
-//   constant, and kinetic plus strain energy drifts by less than 3 %.
+//   constant, and kinetic plus strain energy drifts by less than 3 %;
+// - point velocities the grid cannot see (scenes/grid_blind_velocity.prm):
+//   pure FLIP keeps their kinetic energy, a PIC fraction alpha scales it by
+//   (1 - alpha)^2 per step, to round-off;
+// - a uniform block moving into a fixed wall: after one step the point
+//   velocities are those of the constrained grid, so the momentum falls by
+//   v0 times the mass the wall nodes carry, M h / (2 W) for a block of
+//   width W on cells of width h (2 x 2 or 3 x 3 points per cell put half a
+//   cell column's mass on the wall). MUSL and USL; USF constrains the
+//   velocity before the forces, so its points keep the old velocity.
 
 #include <deal.II/base/mpi.h>
 
@@ -119,6 +128,48 @@ two_disks()
   mpm_tests::check("two disks: energy drift below 3%", drift < 0.03);
 }
 
+void
+grid_blind_velocity(const double pic_fraction)
+{
+  auto csv = run_scene("scenes/grid_blind_velocity.prm",
+                       {"Time stepping/PIC fraction=" +
+                        std::to_string(pic_fraction)});
+  const double e0    = csv["kinetic_energy"][0];
+  double       error = 0., momentum = 0.;
+  for (unsigned int n = 0; n < csv["time"].size(); ++n)
+    {
+      error = std::max(error,
+                       std::abs(csv["kinetic_energy"][n] -
+                                e0 * std::pow(1. - pic_fraction, 2. * n)) /
+                         e0);
+      momentum = std::max(momentum, std::abs(csv["momentum_x"][n]));
+    }
+  deallog << "grid-blind velocity, PIC fraction " << pic_fraction
+          << ": steps " << csv["time"].size() - 1 << std::endl;
+  mpm_tests::check("grid-blind velocity: kinetic energy = E0 (1 - alpha)^2n "
+                   "to 1e-12",
+                   error < 1e-12);
+  mpm_tests::check("grid-blind velocity: momentum zero to 1e-12",
+                   momentum < 1e-12 * std::sqrt(2. * e0 * csv["mass"][0]));
+}
+
+void
+block_into_wall(const std::string &scheme)
+{
+  auto csv = run_scene("scenes/grid_blind_velocity.prm",
+                       {"Boundary conditions/Fixed boundaries=left",
+                        "Bodies/block/Initial velocity=-1; 0",
+                        "Time stepping/Update scheme=" + scheme});
+  const double mass     = csv["mass"][0];
+  const double expected = -(1. - 0.1 / 2.) * mass;
+  deallog << "block into a wall, " << scheme << ": momentum after one step "
+          << csv["momentum_x"][1] / mass << " M v0" << std::endl;
+  mpm_tests::check("block into a wall (" + scheme +
+                     "): momentum after one step = -(M - M h / 2W) v0 to "
+                     "1e-12",
+                   std::abs(csv["momentum_x"][1] - expected) < 1e-12 * mass);
+}
+
 int
 main(int argc, char **argv)
 {
@@ -129,4 +180,8 @@ main(int argc, char **argv)
   for (const std::string scheme : {"USF", "USL", "MUSL"})
     vibrating_bar(scheme);
   two_disks();
+  grid_blind_velocity(0.);
+  grid_blind_velocity(0.1);
+  for (const std::string scheme : {"MUSL", "USL"})
+    block_into_wall(scheme);
 }

@@ -108,7 +108,7 @@ namespace mpm
 
   template <int dim>
   void
-  GridTransfer<dim>::compute_nodal_velocity()
+  GridTransfer<dim>::compute_nodal_velocity(const bool constrain)
   {
     double *v = nodes.data();
     for (const unsigned int node : nodes.nodes_to_solve())
@@ -119,7 +119,8 @@ namespace mpm
         for (unsigned int d = 0; d < dim; ++d)
           v[node + NodalLayout::velocity + d] =
             m > 0. ? v[node + NodalLayout::velocity + d] / m : 0.;
-        dirichlet.apply(node, v + node + NodalLayout::velocity);
+        if (constrain)
+          dirichlet.apply(node, v + node + NodalLayout::velocity);
       }
   }
 
@@ -133,14 +134,30 @@ namespace mpm
     double *v = nodes.data();
     for (const unsigned int node : nodes.nodes_to_solve())
       {
-        const double m = v[node + NodalLayout::mass];
-        double *     a = v + node + NodalLayout::force;
+        const double m        = v[node + NodalLayout::mass];
+        double *     a        = v + node + NodalLayout::force;
+        double *     velocity = v + node + NodalLayout::velocity;
         for (unsigned int d = 0; d < dim; ++d)
           a[d] = m > 0. ? a[d] / m : 0.;
-        dirichlet.apply(node, a);
-        if (advance_velocity)
-          for (unsigned int d = 0; d < dim; ++d)
-            v[node + NodalLayout::velocity + d] += dt * a[d];
+        if (dt > 0.)
+          {
+            // The acceleration that takes the projected velocity to the
+            // constrained end-of-step velocity. Zeroing a alone would leave
+            // a point near a wall with the velocity it had before the wall
+            // stopped its nodes, a velocity the grid no longer has.
+            double end[dim];
+            for (unsigned int d = 0; d < dim; ++d)
+              end[d] = velocity[d] + dt * a[d];
+            dirichlet.apply(node, end);
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                a[d] = (end[d] - velocity[d]) / dt;
+                if (advance_velocity)
+                  velocity[d] = end[d];
+              }
+          }
+        else
+          dirichlet.apply(node, a);
       }
   }
 

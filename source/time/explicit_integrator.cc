@@ -26,11 +26,13 @@ namespace mpm
     GridTransfer<dim> &                           transfer,
     const std::vector<std::unique_ptr<Material>> &materials,
     const Scheme                                  scheme,
+    const double                                  pic_fraction,
     const double                                  cell_size,
     TimerOutput &                                 timer)
     : transfer(transfer)
     , materials(materials)
     , scheme(scheme)
+    , pic_fraction(pic_fraction)
     , cell_size(cell_size)
     , timer(timer)
   {}
@@ -58,10 +60,13 @@ namespace mpm
     switch (scheme)
       {
         case Scheme::MUSL:
-          // [W] 3.5, points 2-5: nodal v^t, forces, accelerations.
+          // [W] 3.5, points 2-5: nodal v^t, forces, accelerations (and
+          // v^t + dt a, which the PIC share of the point update needs).
           timed("P2G", [&] { transfer.project_mass_momentum(true); });
-          timed("nodal solve",
-                [&] { transfer.compute_nodal_acceleration(dt, false); });
+          timed("nodal solve", [&] {
+            transfer.compute_nodal_velocity(false);
+            transfer.compute_nodal_acceleration(dt, true);
+          });
           // Point 6: V_p += dt N a.
           timed("G2P", [&] { update_points(dt, advance, report); });
           // Point 7: v^L from the new point velocities.
@@ -73,7 +78,7 @@ namespace mpm
         case Scheme::USL:
           timed("P2G", [&] { transfer.project_mass_momentum(true); });
           timed("nodal solve", [&] {
-            transfer.compute_nodal_velocity();
+            transfer.compute_nodal_velocity(false);
             transfer.compute_nodal_acceleration(dt, true);
           });
           timed("G2P", [&] { update_points(dt, all, report); });
@@ -103,11 +108,23 @@ namespace mpm
       [&](Particle &particle, const Support<dim> &support) {
         if (update.advance_velocity)
           {
+            // FLIP, v_p + dt N a, blended with PIC, N (v + dt a): the PIC
+            // share damps point velocities that the grid cannot represent.
             const Tensor<1, dim> a =
               transfer.interpolate(support, NodalLayout::force);
             const ArrayView<double> p = particle->get_properties();
-            for (unsigned int d = 0; d < dim; ++d)
-              p[Layout::velocity + d] += dt * a[d];
+            if (pic_fraction > 0.)
+              {
+                const Tensor<1, dim> v =
+                  transfer.interpolate(support, NodalLayout::velocity);
+                for (unsigned int d = 0; d < dim; ++d)
+                  p[Layout::velocity + d] =
+                    (1. - pic_fraction) * (p[Layout::velocity + d] + dt * a[d]) +
+                    pic_fraction * v[d];
+              }
+            else
+              for (unsigned int d = 0; d < dim; ++d)
+                p[Layout::velocity + d] += dt * a[d];
           }
         if (update.update_stress)
           update_stress(particle, support, dt, report);

@@ -77,13 +77,18 @@ namespace mpm
     void
     project_force();
 
-    /** v = p / m on every node (0 where m = 0), then the velocity conditions. */
+    /**
+     * v = p / m on every node (0 where m = 0), then, if `constrain`, the
+     * velocity conditions.
+     */
     void
-    compute_nodal_velocity();
+    compute_nodal_velocity(const bool constrain = true);
 
     /**
-     * a = f / m on every node, then the velocity conditions (they hold for
-     * a as well); if `advance_velocity`, also v += dt a.
+     * a = f / m on every node, corrected so that v + dt a meets the velocity
+     * conditions, where v is the nodal velocity as it stands (constrained or
+     * not); if `advance_velocity`, also v += dt a. With dt = 0 the
+     * conditions act on a alone.
      */
     void
     compute_nodal_acceleration(const double dt, const bool advance_velocity);

@@ -69,12 +69,14 @@ namespace mpm
     parse_scheme(const std::string &name);
 
     /**
-     * `cell_size` is the smallest cell edge of the grid: no point may move
-     * farther in one step.
+     * `pic_fraction` is the share of the PIC velocity in the point velocity
+     * update (0: pure FLIP). `cell_size` is the smallest cell edge of the
+     * grid: no point may move farther in one step.
      */
     ExplicitIntegrator(GridTransfer<dim> &                           transfer,
                        const std::vector<std::unique_ptr<Material>> &materials,
                        const Scheme                                  scheme,
+                       const double pic_fraction,
                        const double                                  cell_size,
                        TimerOutput &                                 timer);
 
@@ -119,6 +121,7 @@ namespace mpm
     GridTransfer<dim> &                           transfer;
     const std::vector<std::unique_ptr<Material>> &materials;
     const Scheme                                  scheme;
+    const double                                  pic_fraction;
     const double                                  cell_size;
     TimerOutput &                                 timer;
   };
