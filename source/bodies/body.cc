@@ -18,19 +18,26 @@ namespace mpm
   {
     prm.declare_entry("Shape",
                       "box",
-                      Patterns::Selection("box|disk|sphere|polygon"),
+                      Patterns::Selection("box|disk|sphere|cylinder|polygon"),
                       "Shape filled with points: 'box' (Lower corner, Upper "
                       "corner), 'disk' in 2D or 'sphere' in 3D (Center, "
-                      "Radius), 'polygon' in 2D (Vertices).");
+                      "Radius), 'cylinder' in 3D (Center of one end, Axis, "
+                      "Radius), 'polygon' in 2D (Vertices). Only the part "
+                      "inside the grid gets points, so a grid that starts "
+                      "on a symmetry plane cuts the shape there.");
     prm.declare_entry("Lower corner", "", Patterns::Anything(),
                       "Box: the corner with the smallest coordinates, "
                       "e.g. '0, 0'.");
     prm.declare_entry("Upper corner", "", Patterns::Anything(),
                       "Box: the corner with the largest coordinates.");
     prm.declare_entry("Center", "", Patterns::Anything(),
-                      "Disk or sphere: its centre, e.g. '0.2, 0.2'.");
+                      "Disk or sphere: its centre, e.g. '0.2, 0.2'. "
+                      "Cylinder: the centre of one end face.");
     prm.declare_entry("Radius", "0", Patterns::Double(0.),
-                      "Disk or sphere: its radius.");
+                      "Disk, sphere or cylinder: its radius.");
+    prm.declare_entry("Axis", "", Patterns::Anything(),
+                      "Cylinder: the vector from the centre of one end face "
+                      "to the centre of the other, e.g. '0, 0, 0.0324'.");
     prm.declare_entry("Vertices", "", Patterns::Anything(),
                       "Polygon: its vertices in order, ';'-separated, e.g. "
                       "'0,0; 1,0; 0,1'.");
@@ -116,6 +123,21 @@ namespace mpm
         if (!(radius > 0.))
           throw InputError(section_path + "/Radius must be positive.");
       }
+    else if (shape_name == "cylinder")
+      {
+        if (dim != 3)
+          throw InputError(section_path +
+                           "/Shape = cylinder needs Dimension = 3; in 2D "
+                           "use a box.");
+        shape  = Shape::cylinder;
+        center = parse_point<dim>(prm.get("Center"), section_path + "/Center");
+        axis   = parse_point<dim>(prm.get("Axis"), section_path + "/Axis");
+        radius = prm.get_double("Radius");
+        if (!(radius > 0.))
+          throw InputError(section_path + "/Radius must be positive.");
+        if (!(axis.norm() > 0.))
+          throw InputError(section_path + "/Axis must not be zero.");
+      }
     else
       {
         if (dim != 2)
@@ -172,6 +194,13 @@ namespace mpm
           return true;
         case Shape::ball:
           return x.distance_square(center) <= radius * radius;
+        case Shape::cylinder:
+          {
+            const Tensor<1, dim> d = x - center;
+            const double         t = d * axis / axis.norm_square();
+            return t >= 0. && t <= 1. &&
+                   (d - t * axis).norm_square() <= radius * radius;
+          }
         case Shape::polygon:
           {
             // Even-odd rule with a ray in +x direction.

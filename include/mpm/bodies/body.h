@@ -17,7 +17,7 @@ namespace mpm
   /**
    * A body of material: a shape filled with material points, the material
    * they are made of, and their initial velocity. Shapes: box, disk (2D),
-   * sphere (3D) and polygon (2D).
+   * sphere (3D), cylinder (3D) and polygon (2D).
    */
   template <int dim>
   class Body
@@ -94,6 +94,7 @@ namespace mpm
     {
       box,
       ball,
+      cylinder,
       polygon
     };
 
@@ -103,6 +104,7 @@ namespace mpm
     Point<dim>              upper_corner;
     Point<dim>              center;
     double                  radius = 0.;
+    Tensor<1, dim>          axis;
     std::vector<Point<dim>> polygon;
     unsigned int            material = 0;
     /** K0 of the geostatic stress; negative: no initial stress. */
