@@ -276,13 +276,7 @@ namespace mpm
     // A fixed time step must be stable for the initial state.
     if (fixed_time_step > 0. && !implicit)
       {
-        double max_speed = 0.;
-        for (const auto &particle : points->handler())
-          max_speed = std::max(
-            max_speed,
-            PointLayout<dim>::get_velocity(particle.get_properties()).norm());
-        max_speed         = Utilities::MPI::max(max_speed, communicator);
-        const double limit = stable_time_step(max_speed) / cfl_number;
+        const double limit = stable_time_step(current_speeds()) / cfl_number;
         if (fixed_time_step > limit)
           {
             std::ostringstream message;
@@ -299,13 +293,38 @@ namespace mpm
 
 
   template <int dim>
-  double
-  Simulator<dim>::stable_time_step(const double max_speed) const
+  typename Simulator<dim>::Speeds
+  Simulator<dim>::current_speeds() const
   {
-    double wave_speed = 0.;
-    for (const auto &m : materials)
-      wave_speed = std::max(wave_speed, m->p_wave_speed());
-    return cfl_number * basis.minimum_cell_size() / (wave_speed + max_speed);
+    using Layout = PointLayout<dim>;
+    Speeds speeds;
+    for (const auto &particle : points->handler())
+      {
+        const ArrayView<const double> p = particle.get_properties();
+        const Material &              material =
+          *materials[static_cast<unsigned int>(p[Layout::material_id])];
+        speeds.point = std::max(speeds.point, Layout::get_velocity(p).norm());
+        speeds.signal =
+          std::max(speeds.signal,
+                   material.signal_speed(
+                     Layout::get_stress(p),
+                     ArrayView<const double>(&p[Layout::internal_variables],
+                                             material.n_internal_variables()),
+                     basis.minimum_cell_size()));
+      }
+    speeds.point  = Utilities::MPI::max(speeds.point, communicator);
+    speeds.signal = Utilities::MPI::max(speeds.signal, communicator);
+    return speeds;
+  }
+
+
+
+  template <int dim>
+  double
+  Simulator<dim>::stable_time_step(const Speeds &speeds) const
+  {
+    return cfl_number * basis.minimum_cell_size() /
+           (speeds.signal + speeds.point);
   }
 
 
@@ -394,13 +413,28 @@ namespace mpm
 
 
   template <int dim>
-  double
+  typename Simulator<dim>::Speeds
   Simulator<dim>::explicit_step()
   {
     transfer->set_load_factor(loads->load_factor(time));
     const auto report = integrator->step(dt);
     check_step(report, dt);
-    return Utilities::MPI::max(report.max_speed, communicator);
+    Speeds speeds;
+    speeds.point  = Utilities::MPI::max(report.max_speed, communicator);
+    speeds.signal = Utilities::MPI::max(report.max_signal_speed, communicator);
+    const double limit = stable_time_step(speeds) / cfl_number;
+    if (fixed_time_step > limit)
+      {
+        std::ostringstream message;
+        message << "After step " << step + 1 << " (t = " << time + dt
+                << ") the fixed Time stepping/Time step = " << fixed_time_step
+                << " exceeds the explicit stability limit " << limit
+                << ": the material has stiffened or the points have sped "
+                   "up. The last good state is in the output written so "
+                   "far. Use a smaller step, or 0 for an automatic one.";
+        throw RunError(message.str());
+      }
+    return speeds;
   }
 
 
@@ -449,11 +483,7 @@ namespace mpm
           << std::endl;
     wall_clock.restart();
 
-    double max_speed = 0.;
-    for (const auto &particle : points->handler())
-      max_speed = std::max(
-        max_speed, PointLayout<dim>::get_velocity(particle.get_properties()).norm());
-    max_speed = Utilities::MPI::max(max_speed, communicator);
+    Speeds speeds = current_speeds();
 
     if (dynamic_implicit)
       {
@@ -501,10 +531,10 @@ namespace mpm
         else
           {
             dt = (fixed_time_step > 0. ? fixed_time_step :
-                                         stable_time_step(max_speed));
+                                         stable_time_step(speeds));
             if (time + dt > end_time - time_tolerance)
               dt = end_time - time;
-            max_speed = explicit_step();
+            speeds = explicit_step();
           }
         {
           TimerOutput::Scope t(timer, "sort points");

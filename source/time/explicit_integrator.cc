@@ -167,10 +167,12 @@ namespace mpm
     const SymmetricTensor<2, 3> stress_old = stress;
     const Material &material =
       *materials[static_cast<unsigned int>(p[Layout::material_id])];
-    material.update_stress(kinematics,
-                           stress,
-                           ArrayView<double>(&p[Layout::internal_variables],
-                                             material.n_internal_variables()));
+    const ArrayView<double> internal(&p[Layout::internal_variables],
+                                     material.n_internal_variables());
+    material.update_stress(kinematics, stress, internal);
+    report.max_signal_speed =
+      std::max(report.max_signal_speed,
+               material.signal_speed(stress, internal, cell_size));
 
     // Stress power per reference volume, tau : D with tau = J sigma, by the
     // trapezoidal rule.

@@ -71,8 +71,20 @@ namespace mpm
     }
 
   private:
+    /** The largest point speed and signal speed (Material::signal_speed). */
+    struct Speeds
+    {
+      double point  = 0.;
+      double signal = 0.;
+    };
+
+    /** Speeds of the points as they are, over all ranks. */
+    Speeds
+    current_speeds() const;
+
+    /** CFL number times the smallest cell edge over the sum of the speeds. */
     double
-    stable_time_step(const double max_speed) const;
+    stable_time_step(const Speeds &speeds) const;
 
     void
     check_step(const typename ExplicitIntegrator<dim>::StepReport &report,
@@ -81,8 +93,12 @@ namespace mpm
     void
     report_progress(const bool force);
 
-    /** One explicit step of size dt; returns the largest point speed. */
-    double
+    /**
+     * One explicit step of size dt; returns the speeds after it. A fixed
+     * Time step that the state has outgrown (a stiffening law) stops the
+     * run.
+     */
+    Speeds
     explicit_step();
 
     /**

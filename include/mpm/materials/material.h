@@ -134,6 +134,23 @@ namespace mpm
     double
     p_wave_speed() const;
 
+    /**
+     * The speed whose time to cross a cell bounds the explicit step at this
+     * state: the p-wave speed, which for a law whose stiffness follows the
+     * state depends on it, plus 2 mu_v / (rho h) for a law with a viscosity
+     * mu_v (the diffusive limit dt < rho h^2 / (2 mu_v) in the same form).
+     */
+    virtual double
+    signal_speed(const SymmetricTensor<2, 3> &  stress,
+                 const ArrayView<const double> &internal_variables,
+                 const double                   cell_size) const
+    {
+      (void)stress;
+      (void)internal_variables;
+      (void)cell_size;
+      return p_wave_speed();
+    }
+
   protected:
     /** Linear elastic energy density 1/2 sigma : C^-1 : sigma. */
     double

@@ -43,6 +43,8 @@ namespace mpm
     struct StepReport
     {
       double      max_speed         = 0.;
+      /** The largest Material::signal_speed after the stress update. */
+      double      max_signal_speed  = 0.;
       double      max_cell_fraction = 0.;
       Point<dim>  fastest_position;
       bool        failed = false;
