@@ -6,6 +6,7 @@
 #include <mpm/materials/mohr_coulomb.h>
 #include <mpm/materials/neo_hookean.h>
 #include <mpm/materials/von_mises.h>
+#include <mpm/materials/wieckowski_granular.h>
 
 #include <cmath>
 
@@ -18,7 +19,8 @@ namespace mpm
                       "linear elastic",
                       Patterns::Selection("linear elastic|neo-Hookean|Hencky|"
                                           "Mohr-Coulomb|von Mises|"
-                                          "Drucker-Prager viscoplastic"),
+                                          "Drucker-Prager viscoplastic|"
+                                          "Wieckowski granular"),
                       "Constitutive law. 'linear elastic': hypoelastic, "
                       "integrated with the Jaumann stress rate as in "
                       "Wieckowski (2004). 'neo-Hookean': compressible "
@@ -28,7 +30,12 @@ namespace mpm
                       "elastoplastic at finite strain with Hencky elasticity "
                       "(subsections of the same names). 'Drucker-Prager "
                       "viscoplastic': Wieckowski's (2004) cohesionless "
-                      "Perzyna law with the Jaumann rate (its subsection).");
+                      "Perzyna law with the Jaumann rate (its subsection). "
+                      "'Wieckowski granular': his law for loose fill, eq. "
+                      "(24): pressure exponential in the volume change plus "
+                      "bulk viscosity, shear modulus proportional to the "
+                      "pressure, deviator as 'Drucker-Prager viscoplastic' "
+                      "(both subsections; Young's modulus is not used).");
     prm.declare_entry("Density",
                       "1000",
                       Patterns::Double(0.),
@@ -44,6 +51,7 @@ namespace mpm
     MohrCoulomb::declare_parameters(prm);
     VonMises::declare_parameters(prm);
     DruckerPragerViscoplastic::declare_parameters(prm);
+    WieckowskiGranular::declare_parameters(prm);
   }
 
 
@@ -68,10 +76,12 @@ namespace mpm
       return std::make_unique<DruckerPragerViscoplastic>(prm,
                                                          name,
                                                          section_path);
+    if (model == "Wieckowski granular")
+      return std::make_unique<WieckowskiGranular>(prm, name, section_path);
     throw InputError(section_path + "/Model = '" + model +
                      "' is not a known law; use one of: linear elastic, "
                      "neo-Hookean, Hencky, Mohr-Coulomb, von Mises, "
-                     "Drucker-Prager viscoplastic.");
+                     "Drucker-Prager viscoplastic, Wieckowski granular.");
   }
 
 
