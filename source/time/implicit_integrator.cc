@@ -40,6 +40,13 @@ namespace mpm
                       "linear: one iteration per load step, accepted as it "
                       "is; with one load step this is the small-strain "
                       "linear solution.");
+    prm.declare_entry("Line search", "false", Patterns::Bool(),
+                      "Backtrack along each Newton correction, halving it "
+                      "up to 5 times, until the out-of-balance force falls. "
+                      "For plastic runs in which points switch between the "
+                      "planes, edges and apex of Mohr-Coulomb and full "
+                      "Newton cycles. Costs one more force assembly per "
+                      "iteration.");
     prm.declare_entry(
       "Integration", "full cells by cell volume",
       Patterns::Selection("material points|full cells by cell volume"),
@@ -109,6 +116,7 @@ namespace mpm
     max_iterations  = prm.get_integer("Maximum iterations");
     modified_newton = prm.get("Variant") == "modified";
     linear_only     = prm.get("Variant") == "linear";
+    line_search     = prm.get_bool("Line search");
     linear_solver   = prm.get("Linear solver");
     scale_full_cells = prm.get("Integration") == "full cells by cell volume";
     prm.leave_subsection();
@@ -794,6 +802,8 @@ namespace mpm
         }
         displacement += correction;
         displacement_ghosted = displacement;
+        if (line_search)
+          search_along_correction(load_factor, ratio);
       }
     if (!converged)
       {
@@ -805,6 +815,37 @@ namespace mpm
         message << " did not converge in " << max_iterations
                 << " Newton iterations.";
         throw RunError(message.str());
+      }
+  }
+
+
+
+  template <int dim>
+  void
+  ImplicitIntegrator<dim>::search_along_correction(const double load_factor,
+                                                   const double ratio)
+  {
+    // assemble() keeps f_ext in `correction`: save the direction first.
+    const TrilinosWrappers::MPI::Vector direction(correction);
+    double                              step = 1.;
+    for (unsigned int cut = 0; cut < 5; ++cut)
+      {
+        double trial = std::numeric_limits<double>::infinity();
+        try
+          {
+            TimerOutput::Scope t(timer, "assemble");
+            assemble(load_factor, false);
+            trial = residual.l2_norm() / external_force_norm;
+          }
+        catch (const RunError &)
+          {
+            // An inverted point: too far along the correction.
+          }
+        if (trial < ratio)
+          return;
+        step /= 2.;
+        displacement.add(-step, direction);
+        displacement_ghosted = displacement;
       }
   }
 

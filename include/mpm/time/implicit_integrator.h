@@ -152,6 +152,14 @@ namespace mpm
     solve_newton(const double load_factor);
 
     /**
+     * After displacement += correction: halve the correction (up to 5
+     * times) until the out-of-balance ratio falls below `ratio`, the one
+     * before the correction; keeps the last try if none does.
+     */
+    void
+    search_along_correction(const double load_factor, const double ratio);
+
+    /**
      * What the law sees of a step with deformation increment dF from F_n:
      * F_new = dF F_n, and the velocity gradient L = (dF - I) / dt over the
      * step (or load step, in pseudo-time), so rate laws see their rate.
@@ -185,6 +193,7 @@ namespace mpm
     unsigned int max_iterations;
     bool         modified_newton;
     bool         linear_only;
+    bool         line_search;
     std::string  linear_solver;
     bool         scale_full_cells;
     bool         dynamic;
