@@ -27,7 +27,8 @@
 //   linearly (one load step, one iteration) its tip deflects by the linear
 //   bilinear-FE value 0.60226 m of benchmarks.md section 1 (the points sit
 //   at the 2 x 2 Gauss positions, so the first MPM solve is that FE solve);
-//   run nonlinearly in 5 load steps it converges, within 1 % of it;
+//   run nonlinearly in 5 load steps it converges, within 1 % of it, and
+//   with the Newton line search it takes the same full steps;
 // - the disk of prm/rolling_disk.prm (Newmark, lumped mass, contact plane
 //   without slip) on its coarse grid (h = 0.05 m) rolls over 0.2 s: its
 //   centre moves along the plane by 75 % to 105 % of the rolling solution
@@ -209,9 +210,19 @@ main(int argc, char **argv)
 
     // Its exit code (0: every load step converged) is in the output.
     csv = mpm_tests::run_scene(cantilever, "cantilever-nonlinear");
+    const double nonlinear = tip(csv);
     mpm_tests::check("cantilever h = 0.5, nonlinear: tip within 1 % of the "
                      "linear value",
-                     std::abs(tip(csv) - linear) < 0.01 * linear);
+                     std::abs(nonlinear - linear) < 0.01 * linear);
+
+    // Where Newton converges quadratically every full correction lowers the
+    // out-of-balance force, so the line search must take them all.
+    csv = mpm_tests::run_scene(cantilever,
+                               "cantilever-line-search",
+                               {"Newton/Line search=true"});
+    mpm_tests::check("cantilever h = 0.5, nonlinear with the line search: "
+                     "the same tip to 1e-12",
+                     std::abs(tip(csv) - nonlinear) < 1e-12 * nonlinear);
   }
 
   // Rolling disk, coarse, 0.2 s.

@@ -117,6 +117,9 @@ namespace mpm
     modified_newton = prm.get("Variant") == "modified";
     linear_only     = prm.get("Variant") == "linear";
     line_search     = prm.get_bool("Line search");
+    if (line_search && linear_only)
+      throw InputError("Newton/Line search does not go with Variant = "
+                       "linear, which accepts its one iteration as it is.");
     linear_solver   = prm.get("Linear solver");
     scale_full_cells = prm.get("Integration") == "full cells by cell volume";
     prm.leave_subsection();
@@ -639,15 +642,18 @@ namespace mpm
         if (dirichlet.has_contact())
           unconstrained_residual.add(dofs, cell_residual);
       }
-    if (Utilities::MPI::logical_or(inverted, points.get_communicator()))
-      throw RunError("A Newton iterate inverted a material point (det F <= "
-                     "0).");
+    // Compress before a throw: entries buffered for other ranks would
+    // otherwise survive `= 0.` and join the next assembly (a line search
+    // goes on after a failed trial).
     if (with_tangent)
       tangent.compress(VectorOperation::add);
     residual.compress(VectorOperation::add);
     correction.compress(VectorOperation::add);
     if (dirichlet.has_contact())
       unconstrained_residual.compress(VectorOperation::add);
+    if (Utilities::MPI::logical_or(inverted, points.get_communicator()))
+      throw RunError("A Newton iterate inverted a material point (det F <= "
+                     "0).");
 
     // The scale of the forces ([B] eq. 31): the external load, or, where
     // none acts (a scene driven by its boundaries alone), the internal
@@ -827,8 +833,9 @@ namespace mpm
   {
     // assemble() keeps f_ext in `correction`: save the direction first.
     const TrilinosWrappers::MPI::Vector direction(correction);
-    double                              step = 1.;
-    for (unsigned int cut = 0; cut < 5; ++cut)
+    constexpr unsigned int              max_cuts = 5;
+    double                              step     = 1.;
+    for (unsigned int cut = 0;; ++cut)
       {
         double trial = std::numeric_limits<double>::infinity();
         try
@@ -841,8 +848,13 @@ namespace mpm
           {
             // An inverted point: too far along the correction.
           }
-        if (trial < ratio)
-          return;
+        if (trial < ratio || cut == max_cuts)
+          {
+            if (cut > 0)
+              pcout << "    line search: " << step << " of the correction"
+                    << (trial < ratio ? "" : ", no decrease") << std::endl;
+            return;
+          }
         step /= 2.;
         displacement.add(-step, direction);
         displacement_ghosted = displacement;

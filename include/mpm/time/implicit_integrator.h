@@ -154,7 +154,7 @@ namespace mpm
     /**
      * After displacement += correction: halve the correction (up to 5
      * times) until the out-of-balance ratio falls below `ratio`, the one
-     * before the correction; keeps the last try if none does.
+     * before the correction; keeps 1/32 of it if none does.
      */
     void
     search_along_correction(const double load_factor, const double ratio);
