@@ -41,10 +41,13 @@ namespace mpm
                       "Simulated time at which the run ends [s].");
     prm.declare_entry("Time step", "0", Patterns::Double(0.),
                       "Fixed time step [s]. 0 chooses every step from the "
-                      "CFL number: dt = CFL h / (c_p + |v|_max), with h the "
-                      "smallest cell edge and c_p the largest p-wave speed. "
-                      "A fixed step above the stability limit h / (c_p + "
-                      "|v|_max) is refused.");
+                      "CFL number: dt = CFL h / (c + |v|_max), with h the "
+                      "smallest cell edge and c the largest signal speed of "
+                      "the points (the p-wave speed of their current "
+                      "stiffness, plus a viscous term for a law with bulk "
+                      "viscosity). A fixed step above the stability limit "
+                      "h / (c + |v|_max) is refused at the start, and stops "
+                      "the run if the state outgrows it later.");
     prm.declare_entry("CFL number", "0.3", Patterns::Double(0., 1.),
                       "Fraction of the stability limit used by the automatic "
                       "time step, 0 < CFL <= 1.");
@@ -208,18 +211,29 @@ namespace mpm
     // start the longest one; the names in the output are then right for
     // every point.
     std::vector<std::string> internal_names;
+    std::string              longest;
     for (const auto &m : materials)
       if (m->n_internal_variables() > internal_names.size())
-        internal_names = m->internal_variable_names();
+        {
+          internal_names = m->internal_variable_names();
+          longest        = m->name();
+        }
+    auto listed = [](const std::vector<std::string> &names) {
+      std::string text;
+      for (const auto &name : names)
+        text += (text.empty() ? "" : ", ") + name;
+      return text;
+    };
     for (const auto &m : materials)
       {
-        const std::vector<std::string> names = m->internal_variable_names();
-        AssertThrow(std::equal(names.begin(), names.end(),
-                               internal_names.begin()),
-                    ExcMessage("The internal variables of material '" +
-                               m->name() +
-                               "' do not start those of the other laws of "
-                               "the scene."));
+        const std::vector<std::string> &names = m->internal_variable_names();
+        if (!std::equal(names.begin(), names.end(), internal_names.begin()))
+          throw InputError("Materials '" + m->name() + "' (" +
+                           listed(names) + ") and '" + longest + "' (" +
+                           listed(internal_names) +
+                           ") keep different internal variables, so one "
+                           "scene cannot hold both: the point output would "
+                           "name them wrongly.");
       }
     points = std::make_unique<MaterialPoints<dim>>(triangulation,
                                                    *mapping,
@@ -278,15 +292,8 @@ namespace mpm
       {
         const double limit = stable_time_step(current_speeds()) / cfl_number;
         if (fixed_time_step > limit)
-          {
-            std::ostringstream message;
-            message << "Time stepping/Time step = " << fixed_time_step
-                    << " exceeds the explicit stability limit " << limit
-                    << " (smallest cell edge " << basis.minimum_cell_size()
-                    << " over p-wave speed plus fastest point). Use a smaller "
-                       "step, or 0 for an automatic one.";
-            throw InputError(message.str());
-          }
+          throw InputError(fixed_step_beyond(limit) +
+                           ". Use a smaller step, or 0 for an automatic one.");
       }
   }
 
@@ -323,8 +330,31 @@ namespace mpm
   double
   Simulator<dim>::stable_time_step(const Speeds &speeds) const
   {
-    return cfl_number * basis.minimum_cell_size() /
-           (speeds.signal + speeds.point);
+    const double step = cfl_number * basis.minimum_cell_size() /
+                        (speeds.signal + speeds.point);
+    // Every rank has the same speeds, so every rank throws.
+    if (!(step > 0. && std::isfinite(step)))
+      throw RunError("The explicit time step is not defined: the largest "
+                     "signal speed is " + std::to_string(speeds.signal) +
+                     " m/s and the fastest point moves at " +
+                     std::to_string(speeds.point) +
+                     " m/s (every point has come apart and rests, or a law "
+                     "overflowed).");
+    return step;
+  }
+
+
+
+  template <int dim>
+  std::string
+  Simulator<dim>::fixed_step_beyond(const double limit) const
+  {
+    std::ostringstream message;
+    message << "Time stepping/Time step = " << fixed_time_step
+            << " exceeds the explicit stability limit " << limit
+            << " (smallest cell edge " << basis.minimum_cell_size()
+            << " over the largest signal speed plus the fastest point)";
+    return message.str();
   }
 
 
@@ -422,17 +452,20 @@ namespace mpm
     Speeds speeds;
     speeds.point  = Utilities::MPI::max(report.max_speed, communicator);
     speeds.signal = Utilities::MPI::max(report.max_signal_speed, communicator);
-    const double limit = stable_time_step(speeds) / cfl_number;
-    if (fixed_time_step > limit)
+    const bool last_step = time + dt >= end_time * (1. - 1e-12);
+    if (fixed_time_step > 0. && !last_step)
       {
-        std::ostringstream message;
-        message << "After step " << step + 1 << " (t = " << time + dt
-                << ") the fixed Time stepping/Time step = " << fixed_time_step
-                << " exceeds the explicit stability limit " << limit
-                << ": the material has stiffened or the points have sped "
-                   "up. The last good state is in the output written so "
-                   "far. Use a smaller step, or 0 for an automatic one.";
-        throw RunError(message.str());
+        const double limit = stable_time_step(speeds) / cfl_number;
+        if (fixed_time_step > limit)
+          {
+            std::ostringstream message;
+            message << "After step " << step + 1 << " (t = " << time + dt
+                    << ") " << fixed_step_beyond(limit)
+                    << ": the material has stiffened or the points have sped "
+                       "up. The last good state is in the output written so "
+                       "far. Use a smaller step, or 0 for an automatic one.";
+            throw RunError(message.str());
+          }
       }
     return speeds;
   }

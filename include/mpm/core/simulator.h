@@ -82,9 +82,16 @@ namespace mpm
     Speeds
     current_speeds() const;
 
-    /** CFL number times the smallest cell edge over the sum of the speeds. */
+    /**
+     * CFL number times the smallest cell edge over the sum of the speeds;
+     * throws RunError if that is not a positive number.
+     */
     double
     stable_time_step(const Speeds &speeds) const;
+
+    /** "Time stepping/Time step = ... exceeds the ... limit (why)". */
+    std::string
+    fixed_step_beyond(const double limit) const;
 
     void
     check_step(const typename ExplicitIntegrator<dim>::StepReport &report,
