@@ -139,12 +139,13 @@ namespace mpm
         double *     velocity = v + node + NodalLayout::velocity;
         for (unsigned int d = 0; d < dim; ++d)
           a[d] = m > 0. ? a[d] / m : 0.;
-        if (dt > 0.)
+        if (dt > 0. && dirichlet.constraint_of(node) != nullptr)
           {
             // The acceleration that takes the projected velocity to the
-            // constrained end-of-step velocity. Zeroing a alone would leave
-            // a point near a wall with the velocity it had before the wall
-            // stopped its nodes, a velocity the grid no longer has.
+            // constrained end-of-step velocity (at a wall, the reaction
+            // impulse over dt). Zeroing a alone would leave a point near a
+            // wall with the velocity it had before the wall stopped its
+            // nodes, a velocity the grid no longer has.
             double end[dim];
             for (unsigned int d = 0; d < dim; ++d)
               end[d] = velocity[d] + dt * a[d];
@@ -157,7 +158,12 @@ namespace mpm
               }
           }
         else
-          dirichlet.apply(node, a);
+          {
+            dirichlet.apply(node, a);
+            if (advance_velocity)
+              for (unsigned int d = 0; d < dim; ++d)
+                velocity[d] += dt * a[d];
+          }
       }
   }
 

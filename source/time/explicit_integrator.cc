@@ -60,14 +60,15 @@ namespace mpm
     switch (scheme)
       {
         case Scheme::MUSL:
-          // [W] 3.5, points 2-5: nodal v^t, forces, accelerations (and
-          // v^t + dt a, which the PIC share of the point update needs).
+          // [W] 3.5, points 2-5: nodal v^t (unconstrained, so that the
+          // walls' correction of a sees it), forces, accelerations, and
+          // v^t + dt a, which the PIC share of the point update needs.
           timed("P2G", [&] { transfer.project_mass_momentum(true); });
           timed("nodal solve", [&] {
             transfer.compute_nodal_velocity(false);
             transfer.compute_nodal_acceleration(dt, true);
           });
-          // Point 6: V_p += dt N a.
+          // Point 6: V_p += dt N a (blended with PIC, if asked).
           timed("G2P", [&] { update_points(dt, advance, report); });
           // Point 7: v^L from the new point velocities.
           timed("P2G", [&] { transfer.project_momentum(); });
@@ -119,7 +120,8 @@ namespace mpm
                   transfer.interpolate(support, NodalLayout::velocity);
                 for (unsigned int d = 0; d < dim; ++d)
                   p[Layout::velocity + d] =
-                    (1. - pic_fraction) * (p[Layout::velocity + d] + dt * a[d]) +
+                    (1. - pic_fraction) *
+                      (p[Layout::velocity + d] + dt * a[d]) +
                     pic_fraction * v[d];
               }
             else

@@ -78,7 +78,7 @@ namespace mpm
     ExplicitIntegrator(GridTransfer<dim> &                           transfer,
                        const std::vector<std::unique_ptr<Material>> &materials,
                        const Scheme                                  scheme,
-                       const double pic_fraction,
+                       const double                                  pic_fraction,
                        const double                                  cell_size,
                        TimerOutput &                                 timer);
 
@@ -94,7 +94,7 @@ namespace mpm
     /** What one grid-to-point pass does at every point, in this order. */
     struct PointUpdate
     {
-      /** V_p += dt a(x_p). */
+      /** V_p += dt a(x_p), blended with the PIC velocity if asked. */
       bool advance_velocity = false;
       /** L from the nodal velocity, then F, stress and work density. */
       bool update_stress = false;
