@@ -169,6 +169,10 @@ main(int argc, char **argv)
                  "Bodies/block/Upper corner=0.75, 1",
                  "Time stepping/Time step=0.0015",
                  "Time stepping/End time=1"}));
+  run_case("granular fill beside Mohr-Coulomb",
+           with({"Materials/Names=rubber, fill",
+                 "Materials/rubber/Model=Mohr-Coulomb",
+                 "Materials/fill/Model=Wieckowski granular"}));
   // Stable for the loose fill at the start (limit 1.82e-4 s), not once the
   // bottom has compacted and stiffened.
   run_case("fixed time step the compacting fill outgrows",

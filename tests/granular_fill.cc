@@ -14,6 +14,8 @@
 //   sqrt((K + 4/3 G) / rho) + 2 mu_v / (rho h) with rho = rho0 / J;
 // - a point expanded until p_el < 1e-6 p0 (J = 1.2) has come apart: no
 //   stress, not even from a compression rate, and no limit on the step;
+// - a seeded point starts in the reference state, -p0 I, and a step without
+//   motion keeps it there;
 // - a geostatic start is refused with a message.
 
 #include <deal.II/base/mpi.h>
@@ -63,13 +65,6 @@ void_ratio_pressure(const double J)
 {
   const double e = (1 + e0) * J - 1;
   return p0 * std::exp(-(e - e0) / kappa);
-}
-
-double
-von_mises_q(const SymmetricTensor<2, 3> &stress)
-{
-  const SymmetricTensor<2, 3> s = deviator(stress);
-  return std::sqrt(1.5 * (s * s));
 }
 
 int
@@ -131,7 +126,7 @@ main(int argc, char **argv)
         const double   a = std::cbrt(J);
         StepKinematics k;
         k.dt                      = 1e-6;
-        k.F_old                   = a * Tensor<2, 3>(unit_symmetric_tensor<3>());
+        k.F_old = a * Tensor<2, 3>(unit_symmetric_tensor<3>());
         k.velocity_gradient[0][0] = 1.;
         k.velocity_gradient[1][1] = -1.;
         k.F_new = (Tensor<2, 3>(unit_symmetric_tensor<3>()) +
@@ -144,7 +139,7 @@ main(int argc, char **argv)
         const double p_el = void_ratio_pressure(J);
         const double K    = (1 + e0) / kappa * p_el * J;
         const double G    = 1.5 * (1 - 2 * nu) / (1 + nu) * K;
-        const double q    = von_mises_q(stress);
+        const double q    = mpm_tests::von_mises_q(stress);
         ratio_error =
           std::max(ratio_error,
                    std::abs(q - 3 * G * (2 / std::sqrt(3.)) * k.dt) / q);
@@ -176,11 +171,12 @@ main(int argc, char **argv)
       }
     const double p      = void_ratio_pressure(determinant(F));
     const double steady = m * p * (1 + 2 * rate / std::sqrt(3.) / gamma_);
-    deallog << "isochoric shear: q = " << von_mises_q(stress)
+    deallog << "isochoric shear: q = " << mpm_tests::von_mises_q(stress)
             << " Pa, steady state " << steady << " Pa, plastic strain "
             << internal[0] << std::endl;
     mpm_tests::check("isochoric shear: q = m p (1 + r_eq / gamma) to 1e-6",
-                     std::abs(von_mises_q(stress) - steady) / steady < 1e-6);
+                     std::abs(mpm_tests::von_mises_q(stress) - steady) <
+                       1e-6 * steady);
   }
 
   // The explicit step follows the state.
@@ -217,6 +213,20 @@ main(int argc, char **argv)
     mpm_tests::check("at J = 1.2 (p_el < 1e-6 p0) the fill has come apart: "
                      "no stress under a compression rate, signal speed 0",
                      stress.norm() == 0. && speed == 0.);
+  }
+
+  // The seeded state.
+  {
+    StepKinematics k;
+    k.dt = 1e-4;
+    k.F_old = k.F_new = Tensor<2, 3>(unit_symmetric_tensor<3>());
+    SymmetricTensor<2, 3> stress = law->reference_stress();
+    std::vector<double>   internal(2, 0.);
+    law->update_stress(k, stress, ArrayView<double>(internal.data(), 2));
+    mpm_tests::check("a seeded point is at -p0 I and stays there without "
+                     "motion, to 1e-12",
+                     (stress + p0 * unit_symmetric_tensor<3>()).norm() <
+                       1e-12 * p0);
   }
 
   // A geostatic start is refused.

@@ -5,9 +5,11 @@
 
 #include <deal.II/base/logstream.h>
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/symmetric_tensor.h>
 
 #include <mpm/core/application.h>
 
+#include <cmath>
 #include <fstream>
 #include <iomanip>
 #include <map>
@@ -18,6 +20,14 @@
 namespace mpm_tests
 {
   inline std::ofstream logfile;
+
+  /** The von Mises equivalent stress q = sqrt(3/2 s : s). */
+  inline double
+  von_mises_q(const dealii::SymmetricTensor<2, 3> &stress)
+  {
+    const dealii::SymmetricTensor<2, 3> s = dealii::deviator(stress);
+    return std::sqrt(1.5 * (s * s));
+  }
 
   inline void
   initlog()

@@ -45,13 +45,6 @@ make(const double exponent)
     dynamic_cast<DruckerPragerViscoplastic *>(material.release()));
 }
 
-double
-von_mises_q(const SymmetricTensor<2, 3> &stress)
-{
-  const SymmetricTensor<2, 3> s = deviator(stress);
-  return std::sqrt(1.5 * (s * s));
-}
-
 /** Pure shear to time `end`; calls `observe(t, stress, de)` each step. */
 template <typename Observer>
 void
@@ -94,7 +87,7 @@ main(int argc, char **argv)
       shear(*law, 1e-4 / (1 << refinement), end,
             [&](const double t, const SymmetricTensor<2, 3> &stress,
                 const double) {
-              const double q = von_mises_q(stress);
+              const double q = mpm_tests::von_mises_q(stress);
               pressure_error =
                 std::max(pressure_error,
                          std::abs(-trace(stress) / 3 - p0) / p0);
@@ -136,7 +129,7 @@ main(int argc, char **argv)
       shear(*law, dt, 2.,
             [&](const double, const SymmetricTensor<2, 3> &stress,
                 const double de) {
-              q_last = von_mises_q(stress);
+              q_last = mpm_tests::von_mises_q(stress);
               if (de > 0.)
                 {
                   ++n_plastic;

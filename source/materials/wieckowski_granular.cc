@@ -1,6 +1,7 @@
 #include <mpm/core/input_error.h>
 #include <mpm/materials/wieckowski_granular.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace mpm
@@ -99,7 +100,8 @@ namespace mpm
     // Deviatoric predictor, eqs. (16)-(18) with the Jaumann rate.
     const SymmetricTensor<2, 3> s_old = deviator(stress);
     const SymmetricTensor<2, 3> trial =
-      s_old + kinematics.dt * (2. * G * deviator(D) + jaumann_rotation(L, s_old));
+      s_old +
+      kinematics.dt * (2. * G * deviator(D) + jaumann_rotation(L, s_old));
     const auto [s, de] = viscoplastic_return(trial, p, G, kinematics.dt);
     stress = s - p * unit_symmetric_tensor<3>();
     internal_variables[0] += de;

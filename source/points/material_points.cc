@@ -185,6 +185,9 @@ namespace mpm
           }
         properties[Layout::body_id]     = c.body;
         properties[Layout::material_id] = bodies[c.body].material_index();
+        Layout::set_stress(ArrayView<double>(properties.data(),
+                                             properties.size()),
+                           material.reference_stress());
         particle_handler.insert_particle(
           c.x,
           c.reference,

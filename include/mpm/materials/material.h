@@ -141,14 +141,21 @@ namespace mpm
      * mu_v (the diffusive limit dt < rho h^2 / (2 mu_v) in the same form).
      */
     virtual double
-    signal_speed(const SymmetricTensor<2, 3> &  stress,
-                 const ArrayView<const double> &internal_variables,
-                 const double                   cell_size) const
+    signal_speed(const SymmetricTensor<2, 3> &,
+                 const ArrayView<const double> &,
+                 const double) const
     {
-      (void)stress;
-      (void)internal_variables;
-      (void)cell_size;
       return p_wave_speed();
+    }
+
+    /**
+     * The stress of a freshly seeded point (F = I, zero internal
+     * variables): zero, except for a law whose reference state is stressed.
+     */
+    virtual SymmetricTensor<2, 3>
+    reference_stress() const
+    {
+      return {};
     }
 
   protected:

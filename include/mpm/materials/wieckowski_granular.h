@@ -48,6 +48,13 @@ namespace mpm
                  const ArrayView<const double> &internal_variables,
                  const double                   cell_size) const override;
 
+    /** -p0 I: a seeded point is in the reference state (p0, e0). */
+    SymmetricTensor<2, 3>
+    reference_stress() const override
+    {
+      return -reference_pressure * unit_symmetric_tensor<3>();
+    }
+
     /** Elastic pressure p0 exp((1 + e0)/kappa (1 - J)). */
     double
     elastic_pressure(const double J) const;
