@@ -184,3 +184,38 @@ def snapshots(directory, name="points"):
         result.append((float(time_value),
                        [os.path.join(directory, p) for p in pieces]))
     return result
+
+
+def read_snapshot(files):
+    """The pieces of one snapshot merged: {'points': [...], name: [...]}."""
+    merged = {}
+    for f in files:
+        for key, values in read_vtu(f).items():
+            merged.setdefault(key, []).extend(values)
+    return merged
+
+
+def surface_profile(points, h):
+    """Height of the material in columns of width h: the top of the highest
+    point (its centre plus a quarter cell, for 2 x 2 points per cell) in
+    each column."""
+    columns = {}
+    for x, y, _ in points:
+        k = int(x // h)
+        columns[k] = max(columns.get(k, 0.0), y + h / 4)
+    return [((k + 0.5) * h, columns[k]) for k in sorted(columns)]
+
+
+def profile_toe(profile, h):
+    """The run-out: the right edge of the last column, walking out from the
+    wall, of the connected material at least one cell deep (stray points
+    ahead of the front do not count)."""
+    toe = 0.0
+    previous = None
+    for x, height in profile:
+        if previous is not None and x - previous > 1.5 * h:
+            break
+        if height >= h:
+            toe = x + h / 2
+        previous = x
+    return toe
