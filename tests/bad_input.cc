@@ -157,6 +157,9 @@ main(int argc, char **argv)
                  "Loads/Total force=0, -1",
                  "Loads/Region lower corner=0.9, 0.9",
                  "Loads/Region upper corner=1, 1"}));
+  run_case("line search with the linear Newton variant",
+           with({"Time stepping/Scheme=quasi-static",
+                 "Newton/Variant=linear", "Newton/Line search=true"}));
   run_case("Newmark without a time step",
            with({"Time stepping/Scheme=Newmark"}));
   run_case("points leave the grid",
@@ -169,7 +172,7 @@ main(int argc, char **argv)
                  "Bodies/block/Upper corner=0.75, 1",
                  "Time stepping/Time step=0.0015",
                  "Time stepping/End time=1"}));
-  run_case("granular fill beside Mohr-Coulomb",
+  run_case("granular fill and Mohr-Coulomb in one scene",
            with({"Materials/Names=rubber, fill",
                  "Materials/rubber/Model=Mohr-Coulomb",
                  "Materials/fill/Model=Wieckowski granular"}));

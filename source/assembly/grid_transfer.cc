@@ -139,31 +139,29 @@ namespace mpm
         double *     velocity = v + node + NodalLayout::velocity;
         for (unsigned int d = 0; d < dim; ++d)
           a[d] = m > 0. ? a[d] / m : 0.;
+        dirichlet.apply(node, a);
         if (dt > 0. && dirichlet.constraint_of(node) != nullptr)
           {
-            // The acceleration that takes the projected velocity to the
-            // constrained end-of-step velocity (at a wall, the reaction
-            // impulse over dt). Zeroing a alone would leave a point near a
-            // wall with the velocity it had before the wall stopped its
-            // nodes, a velocity the grid no longer has.
-            double end[dim];
+            // Add the acceleration that takes the projected velocity v to
+            // the constrained P v (at a wall, the reaction impulse over dt),
+            // so that v + dt a = P v + dt P a. Constraining a alone would
+            // leave a point near a wall with the velocity it had before the
+            // wall stopped its nodes, a velocity the grid no longer has.
+            double constrained[dim];
             for (unsigned int d = 0; d < dim; ++d)
-              end[d] = velocity[d] + dt * a[d];
-            dirichlet.apply(node, end);
+              constrained[d] = velocity[d];
+            dirichlet.apply(node, constrained);
             for (unsigned int d = 0; d < dim; ++d)
               {
-                a[d] = (end[d] - velocity[d]) / dt;
+                const double impulse = (constrained[d] - velocity[d]) / dt;
                 if (advance_velocity)
-                  velocity[d] = end[d];
+                  velocity[d] = constrained[d] + dt * a[d];
+                a[d] += impulse;
               }
           }
-        else
-          {
-            dirichlet.apply(node, a);
-            if (advance_velocity)
-              for (unsigned int d = 0; d < dim; ++d)
-                velocity[d] += dt * a[d];
-          }
+        else if (advance_velocity)
+          for (unsigned int d = 0; d < dim; ++d)
+            velocity[d] += dt * a[d];
       }
   }
 

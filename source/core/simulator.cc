@@ -290,7 +290,7 @@ namespace mpm
     // A fixed time step must be stable for the initial state.
     if (fixed_time_step > 0. && !implicit)
       {
-        const double limit = stable_time_step(current_speeds()) / cfl_number;
+        const double limit = stability_limit(current_speeds());
         if (fixed_time_step > limit)
           throw InputError(fixed_step_beyond(limit) +
                            ". Use a smaller step, or 0 for an automatic one.");
@@ -328,10 +328,18 @@ namespace mpm
 
   template <int dim>
   double
+  Simulator<dim>::stability_limit(const Speeds &speeds) const
+  {
+    return basis.minimum_cell_size() / (speeds.signal + speeds.point);
+  }
+
+
+
+  template <int dim>
+  double
   Simulator<dim>::stable_time_step(const Speeds &speeds) const
   {
-    const double step = cfl_number * basis.minimum_cell_size() /
-                        (speeds.signal + speeds.point);
+    const double step = cfl_number * stability_limit(speeds);
     // Every rank has the same speeds, so every rank throws.
     if (!(step > 0. && std::isfinite(step)))
       throw RunError("The explicit time step is not defined: the largest "
@@ -452,10 +460,10 @@ namespace mpm
     Speeds speeds;
     speeds.point  = Utilities::MPI::max(report.max_speed, communicator);
     speeds.signal = Utilities::MPI::max(report.max_signal_speed, communicator);
-    const bool last_step = time + dt >= end_time * (1. - 1e-12);
+    const bool last_step = time + dt >= end_time - end_time_tolerance();
     if (fixed_time_step > 0. && !last_step)
       {
-        const double limit = stable_time_step(speeds) / cfl_number;
+        const double limit = stability_limit(speeds);
         if (fixed_time_step > limit)
           {
             std::ostringstream message;
@@ -548,7 +556,7 @@ namespace mpm
     double next_output      = output_interval;
     double next_time_series = time_series_interval;
 
-    const double time_tolerance = 1e-12 * end_time;
+    const double time_tolerance = end_time_tolerance();
     const double implicit_step_size =
       dynamic_implicit ? fixed_time_step : end_time / n_load_steps;
     // After a cut, the step grows back by doubling, one success at a time.

@@ -809,7 +809,7 @@ namespace mpm
         displacement += correction;
         displacement_ghosted = displacement;
         if (line_search)
-          search_along_correction(load_factor, ratio);
+          search_along_correction(load_factor, ratio * external_force_norm);
       }
     if (!converged)
       {
@@ -828,8 +828,9 @@ namespace mpm
 
   template <int dim>
   void
-  ImplicitIntegrator<dim>::search_along_correction(const double load_factor,
-                                                   const double ratio)
+  ImplicitIntegrator<dim>::search_along_correction(
+    const double load_factor,
+    const double residual_norm)
   {
     // assemble() keeps f_ext in `correction`: save the direction first.
     const TrilinosWrappers::MPI::Vector direction(correction);
@@ -842,17 +843,21 @@ namespace mpm
           {
             TimerOutput::Scope t(timer, "assemble");
             assemble(load_factor, false);
-            trial = residual.l2_norm() / external_force_norm;
+            // Norms, not ratios: without external loads the scale is the
+            // internal force, which the trial changes.
+            trial = residual.l2_norm();
           }
         catch (const RunError &)
           {
             // An inverted point: too far along the correction.
           }
-        if (trial < ratio || cut == max_cuts)
+        if (trial < residual_norm || cut == max_cuts)
           {
             if (cut > 0)
-              pcout << "    line search: " << step << " of the correction"
-                    << (trial < ratio ? "" : ", no decrease") << std::endl;
+              pcout << "    line search: 1/" << (1u << cut)
+                    << " of the correction"
+                    << (trial < residual_norm ? "" : ", no decrease")
+                    << std::endl;
             return;
           }
         step /= 2.;

@@ -83,11 +83,25 @@ namespace mpm
     current_speeds() const;
 
     /**
-     * CFL number times the smallest cell edge over the sum of the speeds;
-     * throws RunError if that is not a positive number.
+     * The smallest cell edge over the sum of the speeds: the largest stable
+     * explicit step (infinite if nothing moves or is stiff).
+     */
+    double
+    stability_limit(const Speeds &speeds) const;
+
+    /**
+     * The CFL number times the stability limit; throws RunError if that is
+     * not a positive number.
      */
     double
     stable_time_step(const Speeds &speeds) const;
+
+    /** Times closer than this to End time count as the end. */
+    double
+    end_time_tolerance() const
+    {
+      return 1e-12 * end_time;
+    }
 
     /** "Time stepping/Time step = ... exceeds the ... limit (why)". */
     std::string

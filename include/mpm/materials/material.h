@@ -151,6 +151,9 @@ namespace mpm
     /**
      * The stress of a freshly seeded point (F = I, zero internal
      * variables): zero, except for a law whose reference state is stressed.
+     * Such a law must refuse initialize_stress(), which would replace it.
+     * Its work density starts at zero, so its stored energy is measured
+     * from the seeded state.
      */
     virtual SymmetricTensor<2, 3>
     reference_stress() const

@@ -153,11 +153,12 @@ namespace mpm
 
     /**
      * After displacement += correction: halve the correction (up to 5
-     * times) until the out-of-balance ratio falls below `ratio`, the one
-     * before the correction; keeps 1/32 of it if none does.
+     * times) until the out-of-balance force falls below `residual_norm`,
+     * its norm before the correction; keeps 1/32 of it if none does.
      */
     void
-    search_along_correction(const double load_factor, const double ratio);
+    search_along_correction(const double load_factor,
+                            const double residual_norm);
 
     /**
      * What the law sees of a step with deformation increment dF from F_n:
