@@ -156,11 +156,9 @@ namespace mpm
       std::find(material_names.begin(), material_names.end(), material_name);
     if (found == material_names.end())
       {
-        std::string known;
-        for (const auto &m : material_names)
-          known += (known.empty() ? "" : ", ") + m;
         throw InputError(section_path + "/Material = '" + material_name +
-                         "' is not one of Materials/Names: " + known + ".");
+                         "' is not one of Materials/Names: " +
+                         comma_separated(material_names) + ".");
       }
     material = found - material_names.begin();
 

@@ -218,19 +218,13 @@ namespace mpm
           internal_names = m->internal_variable_names();
           longest        = m->name();
         }
-    auto listed = [](const std::vector<std::string> &names) {
-      std::string text;
-      for (const auto &name : names)
-        text += (text.empty() ? "" : ", ") + name;
-      return text;
-    };
     for (const auto &m : materials)
       {
         const std::vector<std::string> &names = m->internal_variable_names();
         if (!std::equal(names.begin(), names.end(), internal_names.begin()))
           throw InputError("Materials '" + m->name() + "' (" +
-                           listed(names) + ") and '" + longest + "' (" +
-                           listed(internal_names) +
+                           comma_separated(names) + ") and '" + longest + "' (" +
+                           comma_separated(internal_names) +
                            ") keep different internal variables, so one "
                            "scene cannot hold both: the point output would "
                            "name them wrongly.");

@@ -5,6 +5,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace mpm
 {
@@ -34,6 +35,18 @@ namespace mpm
       : std::runtime_error(message)
     {}
   };
+
+  /** Names for a message: "a, b, c". */
+  inline std::string
+  comma_separated(const std::vector<std::string> &names)
+  {
+    std::string text;
+    for (const auto &name : names)
+      text += (text.empty() ? "" : ", ") + name;
+    return text;
+  }
+
+
 
   /**
    * For input errors that only some ranks can see (they depend on the
