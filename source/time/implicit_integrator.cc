@@ -519,9 +519,9 @@ namespace mpm
     Vector<double> point_force;
     FullMatrix<double>          point_tangent;
     Support<dim>                support;
-    std::vector<Tensor<1, dim>> du(Support<dim>::max_nodes);
-    std::vector<Tensor<1, dim>> v_n(Support<dim>::max_nodes);
-    std::vector<Tensor<1, dim>> a_n(Support<dim>::max_nodes);
+    std::vector<Tensor<1, dim>> du(GridBasis<dim>::n_vertices);
+    std::vector<Tensor<1, dim>> v_n(GridBasis<dim>::n_vertices);
+    std::vector<Tensor<1, dim>> a_n(GridBasis<dim>::n_vertices);
     std::vector<double>         internal;
     const double                mass_stiffness =
       dynamic ? (1. - bossak_alpha) / (beta * time_step * time_step) : 0.;
@@ -600,7 +600,7 @@ namespace mpm
                 // its derivative. Consistent: m_p a(x_p) at the point, mass
                 // m_p N_i N_k ([I] eq. 30). Lumped: m_p N_i a_i, mass
                 // m_p N_i on the diagonal.
-                std::array<Tensor<1, dim>, Support<dim>::max_nodes> a_node;
+                std::array<Tensor<1, dim>, GridBasis<dim>::n_vertices> a_node;
                 Tensor<1, dim> a_point;
                 for (unsigned int k = 0; k < support.n_nodes; ++k)
                   {
@@ -875,9 +875,9 @@ namespace mpm
     using Layout = PointLayout<dim>;
     Support<dim>                         support;
     std::vector<types::global_dof_index> dofs(fe_collection[0].n_dofs_per_cell());
-    std::vector<Tensor<1, dim>>          du(Support<dim>::max_nodes);
-    std::vector<Tensor<1, dim>>          v_n(Support<dim>::max_nodes);
-    std::vector<Tensor<1, dim>>          a_n(Support<dim>::max_nodes);
+    std::vector<Tensor<1, dim>>          du(GridBasis<dim>::n_vertices);
+    std::vector<Tensor<1, dim>>          v_n(GridBasis<dim>::n_vertices);
+    std::vector<Tensor<1, dim>>          a_n(GridBasis<dim>::n_vertices);
     for (const auto &cell : dof_handler.active_cell_iterators())
       {
         if (!cell->is_locally_owned() || cell->active_fe_index() != 0)

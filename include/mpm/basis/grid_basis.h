@@ -55,11 +55,15 @@ namespace mpm
              Support<dim> &     support) const
     {
       const CellData &cell = cells[active_cell_index];
-      support.n_nodes      = n_vertices;
+      support.resize(n_vertices);
+      std::array<double, n_vertices>         values;
       std::array<Tensor<1, dim>, n_vertices> grad_ref;
-      reference_values(reference_point, support.N, grad_ref);
+      reference_values(reference_point, values, grad_ref);
       for (unsigned int v = 0; v < n_vertices; ++v)
-        support.nodes[v] = cell.nodes[v];
+        {
+          support.nodes[v] = cell.nodes[v];
+          support.N[v]     = values[v];
+        }
 
       if (cell.is_cartesian)
         {

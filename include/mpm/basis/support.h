@@ -3,7 +3,7 @@
 
 #include <deal.II/base/tensor.h>
 
-#include <array>
+#include <vector>
 
 namespace mpm
 {
@@ -12,21 +12,36 @@ namespace mpm
   /**
    * What a basis gives the assembly for one material point: the nodes that
    * carry it, the shape function values there and their gradients in real
-   * space. The assembly sees nothing else, so MPM and the meshfree method
-   * (later) feed the same code.
+   * space. The assembly sees nothing else, so MPM (GridBasis) and the
+   * Galerkin meshfree method (MeshfreeBasis) feed the same code.
    *
-   * `nodes` holds the local index of each node's first nodal value (see
-   * GridNodes::NodalLayout).
+   * `nodes` holds, for GridBasis, the local index of each node's first
+   * nodal value (see GridNodes::NodalLayout) and, for MeshfreeBasis, the
+   * index of the node in the cloud.
+   *
+   * A grid support has 2^dim nodes, a meshfree one a few dozen; the arrays
+   * only grow, so a Support reused point after point allocates only at the
+   * start.
    */
   template <int dim>
   struct Support
   {
-    static constexpr unsigned int max_nodes = 1u << dim;
+    unsigned int                n_nodes = 0;
+    std::vector<unsigned int>   nodes;
+    std::vector<double>         N;
+    std::vector<Tensor<1, dim>> grad_N;
 
-    unsigned int                                n_nodes = 0;
-    std::array<unsigned int, max_nodes>         nodes;
-    std::array<double, max_nodes>               N;
-    std::array<Tensor<1, dim>, max_nodes>       grad_N;
+    void
+    resize(const unsigned int n)
+    {
+      n_nodes = n;
+      if (nodes.size() < n)
+        {
+          nodes.resize(n);
+          N.resize(n);
+          grad_N.resize(n);
+        }
+    }
   };
 } // namespace mpm
 
