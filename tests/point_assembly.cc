@@ -41,7 +41,7 @@ test(const std::string &model)
   // A support with gradients of a distorted Q1 cell: shape functions of the
   // unit cell mapped by a random affine map plus the Q1 structure.
   Support<dim> support;
-  support.n_nodes = 1u << dim;
+  support.resize(1u << dim);
   Tensor<2, dim> map = unit_symmetric_tensor<dim>();
   for (unsigned int a = 0; a < dim; ++a)
     for (unsigned int b = 0; b < dim; ++b)
