@@ -31,6 +31,16 @@ namespace mpm
                       "Gravitational acceleration, one component per "
                       "dimension, e.g. '0, -9.81' [m/s^2].");
 
+    prm.declare_entry(
+      "Method", "MPM", Patterns::Selection("MPM|GMM-MLS|GMM-LME"),
+      "MPM: the material point method, on the background grid's Q1 shape "
+      "functions. GMM-MLS, GMM-LME: the Galerkin meshfree method (Iaconeta "
+      "et al. 2017), on a cloud of nodes that starts at the grid vertices "
+      "of the cells holding material and moves with it, with moving least "
+      "squares or local max-entropy shape functions (see Meshfree). The "
+      "meshfree methods run with the quasi-static and Newmark schemes, on "
+      "one rank.");
+    MeshfreeBasis<dim>::declare_parameters(prm);
     BackgroundGrid<dim>::declare_parameters(prm);
     DirichletConditions<dim>::declare_parameters(prm);
     PointLoads<dim>::declare_parameters(prm);
@@ -141,6 +151,7 @@ namespace mpm
     TimerOutput::Scope timer_section(timer, "setup");
 
     gravity = parse_point<dim>(prm.get("Gravity"), "Gravity");
+    const std::string method = prm.get("Method");
 
     prm.enter_subsection("Time stepping");
     end_time        = prm.get_double("End time");
@@ -252,6 +263,31 @@ namespace mpm
     integrator = std::make_unique<ExplicitIntegrator<dim>>(
       *transfer, materials, scheme, pic_fraction, basis.minimum_cell_size(),
       timer);
+    std::unique_ptr<MeshfreeBasis<dim>> meshfree;
+    if (method != "MPM")
+      {
+        if (scheme_name == "explicit")
+          throw InputError("Method = " + method + " runs with Time "
+                           "stepping/Scheme = quasi-static or Newmark; the "
+                           "explicit scheme is MPM only.");
+        // The cloud's supports cross rank boundaries freely; ghost nodes
+        // for them are not built yet (doc/architecture.md).
+        if (Utilities::MPI::n_mpi_processes(communicator) > 1)
+          throw InputError("Method = " + method + " runs on one rank only; "
+                           "run this scene without mpirun, or with "
+                           "Method = MPM.");
+        if (dirichlet->has_contact())
+          throw InputError("Boundary conditions/Contact boundaries are not "
+                           "supported with Method = " + method +
+                           "; use Fixed or Slip boundaries, or Method = "
+                           "MPM.");
+        meshfree = std::make_unique<MeshfreeBasis<dim>>(
+          MeshfreeBasis<dim>::parse_parameters(
+            prm,
+            method == "GMM-MLS" ? MeshfreeBasis<dim>::Kind::mls :
+                                  MeshfreeBasis<dim>::Kind::lme,
+            basis.minimum_cell_size()));
+      }
     if (scheme_name != "explicit")
       implicit = std::make_unique<ImplicitIntegrator<dim>>(scheme_name ==
                                                              "Newmark",
@@ -262,7 +298,8 @@ namespace mpm
                                                            materials,
                                                            gravity,
                                                            pcout,
-                                                           timer);
+                                                           timer,
+                                                           std::move(meshfree));
     dynamic_implicit = scheme_name == "Newmark";
     if (dynamic_implicit && !(fixed_time_step > 0.))
       throw InputError("Time stepping/Scheme = Newmark needs a Time step "
@@ -494,6 +531,11 @@ namespace mpm
           }
         catch (const RunError &e)
           {
+            if (!e.smaller_step_helps)
+              throw RunError(std::string(e.what()) +
+                             " The last good state is in the output written "
+                             "so far.",
+                             false);
             if (cut == max_cuts)
               throw RunError(std::string(e.what()) + " Cut " +
                              std::to_string(max_cuts) +

@@ -14,7 +14,10 @@
 #include <mpm/core/input_error.h>
 #include <mpm/time/implicit_integrator.h>
 
+#include <Eigen/Dense>
+
 #include <cmath>
+#include <map>
 #include <iomanip>
 #include <sstream>
 
@@ -100,7 +103,8 @@ namespace mpm
     const std::vector<std::unique_ptr<Material>> &materials,
     const Tensor<1, dim> &                        gravity,
     ConditionalOStream &                          pcout,
-    TimerOutput &                                 timer)
+    TimerOutput &                                 timer,
+    std::unique_ptr<MeshfreeBasis<dim>>           meshfree_basis)
     : points(points)
     , basis(basis)
     , dirichlet(dirichlet)
@@ -109,8 +113,11 @@ namespace mpm
     , pcout(pcout)
     , timer(timer)
     , dynamic(dynamic)
+    , meshfree(std::move(meshfree_basis))
     , dof_handler(points.get_triangulation())
   {
+    if (meshfree)
+      cloud = std::make_unique<NodeCloud<dim>>(points, basis, dirichlet);
     prm.enter_subsection("Newton");
     tolerance       = prm.get_double("Tolerance");
     max_iterations  = prm.get_integer("Maximum iterations");
@@ -162,6 +169,11 @@ namespace mpm
   void
   ImplicitIntegrator<dim>::setup_system()
   {
+    if (cloud)
+      {
+        setup_cloud_system();
+        return;
+      }
     // Unknowns only on cells that hold points.
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -192,6 +204,17 @@ namespace mpm
     DoFTools::make_sparsity_pattern(dof_handler, dsp, constraints, true);
     SparsityTools::distribute_sparsity_pattern(dsp, owned_dofs, comm,
                                                relevant_dofs);
+    reinit_linear_system(dsp);
+    build_cell_groups();
+  }
+
+
+
+  template <int dim>
+  void
+  ImplicitIntegrator<dim>::reinit_linear_system(DynamicSparsityPattern &dsp)
+  {
+    const MPI_Comm comm = points.get_communicator();
     tangent.reinit(owned_dofs, owned_dofs, dsp, comm);
     residual.reinit(owned_dofs, comm);
     correction.reinit(owned_dofs, comm);
@@ -201,6 +224,194 @@ namespace mpm
     acceleration_ghosted.reinit(owned_dofs, relevant_dofs, comm);
     if (dirichlet.has_contact())
       unconstrained_residual.reinit(owned_dofs, relevant_dofs, comm, true);
+  }
+
+
+
+  template <int dim>
+  void
+  ImplicitIntegrator<dim>::build_cell_groups()
+  {
+    groups.clear();
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        if (!cell->is_locally_owned() || cell->active_fe_index() != 0)
+          continue;
+        PointGroup &group = groups.emplace_back();
+        group.dofs.resize(fe_collection[0].n_dofs_per_cell());
+        cell->get_dof_indices(group.dofs);
+        group.weight = quadrature_scale(cell);
+        for (auto particle = points.handler().particles_in_cell(cell).begin();
+             particle != points.handler().particles_in_cell(cell).end();
+             ++particle)
+          {
+            group.particles.push_back(particle);
+            basis.evaluate(cell->active_cell_index(),
+                           particle->get_reference_location(),
+                           group.supports.emplace_back());
+          }
+      }
+  }
+
+
+
+  template <int dim>
+  void
+  ImplicitIntegrator<dim>::setup_cloud_system()
+  {
+    {
+      TimerOutput::Scope t(timer, "meshfree shape functions");
+      meshfree->reinit(cloud->positions);
+      groups.clear();
+      for (auto particle = points.handler().begin();
+           particle != points.handler().end();
+           ++particle)
+        {
+          PointGroup &group = groups.emplace_back();
+          group.particles.push_back(particle);
+          Support<dim> &support = group.supports.emplace_back();
+          try
+            {
+              meshfree->evaluate(particle->get_location(), support);
+            }
+          catch (const RunError &e)
+            {
+              throw RunError("Material point " +
+                               std::to_string(particle->get_id()) + ": " +
+                               e.what(),
+                             false);
+            }
+          group.dofs.resize(support.n_nodes * dim);
+          for (unsigned int i = 0; i < support.n_nodes; ++i)
+            for (unsigned int a = 0; a < dim; ++a)
+              group.dofs[i * dim + a] = support.nodes[i] * dim + a;
+        }
+    }
+    // One rank holds the whole cloud (the simulator refuses more).
+    owned_dofs    = complete_index_set(cloud->size() * dim);
+    relevant_dofs = owned_dofs;
+    make_cloud_constraints();
+    DynamicSparsityPattern dsp(relevant_dofs);
+    for (const PointGroup &group : groups)
+      constraints.add_entries_local_to_global(group.dofs, dsp, true);
+    reinit_linear_system(dsp);
+  }
+
+
+
+  template <int dim>
+  void
+  ImplicitIntegrator<dim>::make_cloud_constraints()
+  {
+    constraints.clear();
+    constraints.reinit(relevant_dofs);
+    const unsigned int n_nodes = cloud->size();
+    std::vector<std::array<bool, dim>> held(n_nodes);
+    for (unsigned int i = 0; i < n_nodes; ++i)
+      held[i] = cloud->held_components(i);
+
+    if (meshfree->kind() == MeshfreeBasis<dim>::Kind::lme)
+      {
+        for (unsigned int i = 0; i < n_nodes; ++i)
+          for (unsigned int a = 0; a < dim; ++a)
+            if (held[i][a])
+              constraints.add_line(i * dim + a);
+        constraints.close();
+        return;
+      }
+
+    // MLS, per component a: sum_j N_j(x_d) u_j = 0 at each held node d.
+    // With D the held nodes and F the others, A_DD u_D = -A_DF u_F, so
+    // u_D = C u_F with C = -A_DD^-1 A_DF, a dense solve of the size of D.
+    Support<dim> support;
+    for (unsigned int a = 0; a < dim; ++a)
+      {
+        std::vector<unsigned int>           held_nodes;
+        std::map<unsigned int, unsigned int> row_of;
+        for (unsigned int i = 0; i < n_nodes; ++i)
+          if (held[i][a])
+            {
+              row_of[i] = held_nodes.size();
+              held_nodes.push_back(i);
+            }
+        if (held_nodes.empty())
+          continue;
+        const unsigned int                   n_held = held_nodes.size();
+        std::map<unsigned int, unsigned int> column_of;
+        std::vector<unsigned int>            free_nodes;
+        Eigen::MatrixXd A_DD = Eigen::MatrixXd::Zero(n_held, n_held);
+        std::vector<std::vector<std::pair<unsigned int, double>>> A_DF(n_held);
+        for (unsigned int r = 0; r < n_held; ++r)
+          {
+            meshfree->evaluate(cloud->positions[held_nodes[r]], support);
+            for (unsigned int k = 0; k < support.n_nodes; ++k)
+              {
+                const unsigned int j = support.nodes[k];
+                if (const auto held_j = row_of.find(j); held_j != row_of.end())
+                  A_DD(r, held_j->second) = support.N[k];
+                else
+                  {
+                    const auto [it, added] =
+                      column_of.emplace(j, free_nodes.size());
+                    if (added)
+                      free_nodes.push_back(j);
+                    A_DF[r].emplace_back(it->second, support.N[k]);
+                  }
+              }
+          }
+        Eigen::MatrixXd B = Eigen::MatrixXd::Zero(n_held, free_nodes.size());
+        for (unsigned int r = 0; r < n_held; ++r)
+          for (const auto &[c, value] : A_DF[r])
+            B(r, c) = value;
+        const Eigen::FullPivLU<Eigen::MatrixXd> lu(A_DD);
+        if (!lu.isInvertible())
+          throw RunError("The MLS boundary conditions cannot be imposed: the "
+                         "shape functions of the held nodes at their own "
+                         "positions are linearly dependent.",
+                         false);
+        const Eigen::MatrixXd C = -lu.solve(B);
+        for (unsigned int r = 0; r < n_held; ++r)
+          {
+            const types::global_dof_index row = held_nodes[r] * dim + a;
+            constraints.add_line(row);
+            for (unsigned int c = 0; c < free_nodes.size(); ++c)
+              if (C(r, c) != 0.)
+                constraints.add_entry(row, free_nodes[c] * dim + a, C(r, c));
+          }
+      }
+    constraints.close();
+  }
+
+
+
+  template <int dim>
+  void
+  ImplicitIntegrator<dim>::move_cloud()
+  {
+    for (unsigned int i = 0; i < cloud->size(); ++i)
+      {
+        const std::array<bool, dim> held = cloud->held_components(i);
+        Tensor<1, dim>              du, v, a;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            du[d] = displacement_ghosted(i * dim + d);
+            v[d]  = velocity_ghosted(i * dim + d);
+            a[d]  = acceleration_ghosted(i * dim + d);
+          }
+        // MLS nodal values are not displacements at the node; a held node
+        // stays on its wall.
+        for (unsigned int d = 0; d < dim; ++d)
+          if (!held[d])
+            cloud->positions[i][d] += du[d];
+        if (dynamic)
+          {
+            const Tensor<1, dim> a_new = end_acceleration(du, v, a);
+            cloud->velocities[i] = v + time_step * ((1. - gamma) * a +
+                                                    gamma * a_new);
+            cloud->accelerations[i] = a_new;
+          }
+      }
+    cloud->has_history = true;
   }
 
 
@@ -446,43 +657,48 @@ namespace mpm
   {
     using Layout      = PointLayout<dim>;
     const MPI_Comm comm = points.get_communicator();
+    projected_velocity.reinit(owned_dofs, comm);
+    projected_acceleration.reinit(owned_dofs, comm);
+    if (cloud && cloud->has_history)
+      {
+        // GMM nodes carry their own velocity and acceleration ([I]
+        // Algorithm 2); only the first step takes them from the points.
+        for (unsigned int i = 0; i < cloud->size(); ++i)
+          for (unsigned int a = 0; a < dim; ++a)
+            {
+              projected_velocity(i * dim + a)     = cloud->velocities[i][a];
+              projected_acceleration(i * dim + a) = cloud->accelerations[i][a];
+            }
+        projected_velocity.compress(VectorOperation::insert);
+        projected_acceleration.compress(VectorOperation::insert);
+        constrain_initial_conditions();
+        return;
+      }
     // Writable ghost entries, summed into their owners by compress().
     TrilinosWrappers::MPI::Vector mass, momentum, mass_acceleration;
     mass.reinit(owned_dofs, relevant_dofs, comm, true);
     momentum.reinit(owned_dofs, relevant_dofs, comm, true);
     mass_acceleration.reinit(owned_dofs, relevant_dofs, comm, true);
 
-    const unsigned int dofs_per_cell = fe_collection[0].n_dofs_per_cell();
-    std::vector<types::global_dof_index> dofs(dofs_per_cell);
-    Support<dim>                         support;
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      {
-        if (!cell->is_locally_owned() || cell->active_fe_index() != 0)
-          continue;
-        cell->get_dof_indices(dofs);
-        for (const auto &particle : points.handler().particles_in_cell(cell))
-          {
-            basis.evaluate(cell->active_cell_index(),
-                           particle.get_reference_location(),
-                           support);
-            const ArrayView<const double> p = particle.get_properties();
-            for (unsigned int i = 0; i < support.n_nodes; ++i)
-              for (unsigned int a = 0; a < dim; ++a)
-                {
-                  const double Nm = support.N[i] * p[Layout::mass];
-                  mass(dofs[i * dim + a]) += Nm;
-                  momentum(dofs[i * dim + a]) += Nm * p[Layout::velocity + a];
-                  mass_acceleration(dofs[i * dim + a]) +=
-                    Nm * p[points.acceleration_index() + a];
-                }
-          }
-      }
+    for (const PointGroup &group : groups)
+      for (unsigned int q = 0; q < group.particles.size(); ++q)
+        {
+          const Support<dim> &          support = group.supports[q];
+          const ArrayView<const double> p = group.particles[q]->get_properties();
+          for (unsigned int i = 0; i < support.n_nodes; ++i)
+            for (unsigned int a = 0; a < dim; ++a)
+              {
+                const types::global_dof_index dof = group.dofs[i * dim + a];
+                const double Nm = support.N[i] * p[Layout::mass];
+                mass(dof) += Nm;
+                momentum(dof) += Nm * p[Layout::velocity + a];
+                mass_acceleration(dof) += Nm * p[points.acceleration_index() + a];
+              }
+        }
     mass.compress(VectorOperation::add);
     momentum.compress(VectorOperation::add);
     mass_acceleration.compress(VectorOperation::add);
 
-    projected_velocity.reinit(owned_dofs, comm);
-    projected_acceleration.reinit(owned_dofs, comm);
     for (const auto i : owned_dofs)
       if (mass(i) > 0.)
         {
@@ -512,44 +728,30 @@ namespace mpm
     double internal_force_square = 0.;
     bool   inverted              = false;
 
-    const unsigned int dofs_per_cell = fe_collection[0].n_dofs_per_cell();
-    std::vector<types::global_dof_index> dofs(dofs_per_cell);
-    FullMatrix<double>                   cell_tangent(dofs_per_cell);
-    Vector<double> cell_residual(dofs_per_cell), cell_external(dofs_per_cell);
-    Vector<double> point_force;
+    FullMatrix<double>          cell_tangent;
+    Vector<double>              cell_residual, cell_external;
+    Vector<double>              point_force;
     FullMatrix<double>          point_tangent;
-    Support<dim>                support;
-    std::vector<Tensor<1, dim>> du(GridBasis<dim>::n_vertices);
-    std::vector<Tensor<1, dim>> v_n(GridBasis<dim>::n_vertices);
-    std::vector<Tensor<1, dim>> a_n(GridBasis<dim>::n_vertices);
+    std::vector<Tensor<1, dim>> du, v_n, a_n, a_node;
     std::vector<double>         internal;
     const double                mass_stiffness =
       dynamic ? (1. - bossak_alpha) / (beta * time_step * time_step) : 0.;
 
-    for (const auto &cell : dof_handler.active_cell_iterators())
+    for (const PointGroup &group : groups)
       {
-        if (!cell->is_locally_owned() || cell->active_fe_index() != 0)
-          continue;
-        cell->get_dof_indices(dofs);
-        cell_tangent  = 0.;
-        cell_residual = 0.;
-        cell_external = 0.;
-        const double weight = quadrature_scale(cell);
-        for (unsigned int i = 0; i < dofs_per_cell; ++i)
-          du[i / dim][i % dim] = displacement_ghosted(dofs[i]);
-        if (dynamic)
-          for (unsigned int i = 0; i < dofs_per_cell; ++i)
-            {
-              v_n[i / dim][i % dim] = velocity_ghosted(dofs[i]);
-              a_n[i / dim][i % dim] = acceleration_ghosted(dofs[i]);
-            }
+        const std::vector<types::global_dof_index> &dofs = group.dofs;
+        const unsigned int dofs_per_cell = dofs.size();
+        cell_tangent.reinit(dofs_per_cell, dofs_per_cell);
+        cell_residual.reinit(dofs_per_cell);
+        cell_external.reinit(dofs_per_cell);
+        const double weight = group.weight;
+        gather(group, du, v_n, a_n);
 
-        for (const auto &particle : points.handler().particles_in_cell(cell))
+        for (unsigned int q = 0; q < group.particles.size(); ++q)
           {
-            basis.evaluate(cell->active_cell_index(),
-                           particle.get_reference_location(),
-                           support);
-            const ArrayView<const double> p = particle.get_properties();
+            const Support<dim> &          support = group.supports[q];
+            const ArrayView<const double> p =
+              group.particles[q]->get_properties();
             const Tensor<2, dim>          dF =
               PointAssembly<dim>::deformation_increment(support, du);
             const Tensor<2, dim> F_n = Layout::get_deformation_gradient(p);
@@ -600,7 +802,7 @@ namespace mpm
                 // its derivative. Consistent: m_p a(x_p) at the point, mass
                 // m_p N_i N_k ([I] eq. 30). Lumped: m_p N_i a_i, mass
                 // m_p N_i on the diagonal.
-                std::array<Tensor<1, dim>, GridBasis<dim>::n_vertices> a_node;
+                a_node.resize(support.n_nodes);
                 Tensor<1, dim> a_point;
                 for (unsigned int k = 0; k < support.n_nodes; ++k)
                   {
@@ -873,31 +1075,15 @@ namespace mpm
   ImplicitIntegrator<dim>::update_points()
   {
     using Layout = PointLayout<dim>;
-    Support<dim>                         support;
-    std::vector<types::global_dof_index> dofs(fe_collection[0].n_dofs_per_cell());
-    std::vector<Tensor<1, dim>>          du(GridBasis<dim>::n_vertices);
-    std::vector<Tensor<1, dim>>          v_n(GridBasis<dim>::n_vertices);
-    std::vector<Tensor<1, dim>>          a_n(GridBasis<dim>::n_vertices);
-    for (const auto &cell : dof_handler.active_cell_iterators())
+    std::vector<Tensor<1, dim>> du, v_n, a_n;
+    for (const PointGroup &group : groups)
       {
-        if (!cell->is_locally_owned() || cell->active_fe_index() != 0)
-          continue;
-        cell->get_dof_indices(dofs);
-        for (unsigned int i = 0; i < dofs.size(); ++i)
+        gather(group, du, v_n, a_n);
+        for (unsigned int q = 0; q < group.particles.size(); ++q)
           {
-            du[i / dim][i % dim] = displacement_ghosted(dofs[i]);
-            if (dynamic)
-              {
-                v_n[i / dim][i % dim] = velocity_ghosted(dofs[i]);
-                a_n[i / dim][i % dim] = acceleration_ghosted(dofs[i]);
-              }
-          }
-        for (auto &particle : points.handler().particles_in_cell(cell))
-          {
-            basis.evaluate(cell->active_cell_index(),
-                           particle.get_reference_location(),
-                           support);
-            const ArrayView<double> p = particle.get_properties();
+            const Support<dim> &support  = group.supports[q];
+            auto                particle = group.particles[q];
+            const ArrayView<double> p = particle->get_properties();
             const Tensor<2, dim>    dF =
               PointAssembly<dim>::deformation_increment(support, du);
             const Tensor<2, dim> F_n = Layout::get_deformation_gradient(p);
@@ -941,8 +1127,34 @@ namespace mpm
                     p[points.acceleration_index() + d] = a_new[d];
                   }
               }
-            particle.set_location(particle.get_location() +
-                                  displacement_at_point);
+            particle->set_location(particle->get_location() +
+                                   displacement_at_point);
+          }
+      }
+    if (cloud)
+      move_cloud();
+  }
+
+
+
+  template <int dim>
+  void
+  ImplicitIntegrator<dim>::gather(const PointGroup &           group,
+                                  std::vector<Tensor<1, dim>> &du,
+                                  std::vector<Tensor<1, dim>> &v_n,
+                                  std::vector<Tensor<1, dim>> &a_n) const
+  {
+    const unsigned int n = group.dofs.size();
+    du.resize(n / dim);
+    v_n.resize(n / dim);
+    a_n.resize(n / dim);
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        du[i / dim][i % dim] = displacement_ghosted(group.dofs[i]);
+        if (dynamic)
+          {
+            v_n[i / dim][i % dim] = velocity_ghosted(group.dofs[i]);
+            a_n[i / dim][i % dim] = acceleration_ghosted(group.dofs[i]);
           }
       }
   }

@@ -100,6 +100,12 @@ namespace mpm
     void
     evaluate(const Point<dim> &x, Support<dim> &support) const;
 
+    Kind
+    kind() const
+    {
+      return settings.kind;
+    }
+
     /** The radius searched first around every point. */
     double
     search_radius() const

@@ -31,9 +31,18 @@ namespace mpm
   class RunError : public std::runtime_error
   {
   public:
-    explicit RunError(const std::string &message)
+    /**
+     * `smaller_step_helps`: whether an implicit scheme may retry the step
+     * with half the size (a Newton iteration that diverged), or not (a
+     * point whose shape functions cannot be built where it stands).
+     */
+    explicit RunError(const std::string &message,
+                      const bool         smaller_step_helps = true)
       : std::runtime_error(message)
+      , smaller_step_helps(smaller_step_helps)
     {}
+
+    const bool smaller_step_helps;
   };
 
   /** Names for a message: "a, b, c". */

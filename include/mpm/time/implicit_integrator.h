@@ -7,10 +7,14 @@
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/hp/fe_collection.h>
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/particles/particle_handler.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <mpm/basis/grid_basis.h>
+#include <mpm/basis/meshfree_basis.h>
+#include <mpm/basis/node_cloud.h>
 #include <mpm/boundary/dirichlet_conditions.h>
 #include <mpm/materials/material.h>
 #include <mpm/points/material_points.h>
@@ -39,6 +43,13 @@ namespace mpm
    *   consistent point mass m_p N_i N_k / (beta dt^2) in the tangent, and the
    *   points' velocity and acceleration updated from the nodes ([I] eqs.
    *   46-49).
+   *
+   * With a MeshfreeBasis the same steps run on the Galerkin meshfree
+   * method ([I] Algorithm 2): the unknowns are those of a NodeCloud, whose
+   * nodes move with the solution and keep their velocity and acceleration
+   * as history, and each point's support comes from MLS or LME shape
+   * functions. Assembly, Newton, Newmark, materials and output are the
+   * same code: both methods reach them only through PointGroup.
    */
   template <int dim>
   class ImplicitIntegrator
@@ -55,7 +66,22 @@ namespace mpm
                        const std::vector<std::unique_ptr<Material>> &materials,
                        const Tensor<1, dim> &                        gravity,
                        ConditionalOStream &                          pcout,
-                       TimerOutput &                                 timer);
+                       TimerOutput &                                 timer,
+                       std::unique_ptr<MeshfreeBasis<dim>> meshfree = {});
+
+    /** The meshfree nodes, or nullptr for MPM. */
+    const NodeCloud<dim> *
+    node_cloud() const
+    {
+      return cloud.get();
+    }
+
+    /** The meshfree basis, or nullptr for MPM. */
+    const MeshfreeBasis<dim> *
+    meshfree_basis() const
+    {
+      return meshfree.get();
+    }
 
     /**
      * Solve one step and move the points. `load_factor` scales gravity and
@@ -67,8 +93,63 @@ namespace mpm
     step(const double load_factor, const double dt);
 
   private:
+    /**
+     * Points that share one list of unknowns, node-major: the points of a
+     * cell (MPM) or a single point (GMM), each with its support at the
+     * start of the step, whose node i carries dofs[i * dim + a].
+     */
+    struct PointGroup
+    {
+      std::vector<types::global_dof_index> dofs;
+      /** Factor on the point volumes (see quadrature_scale()). */
+      double weight = 1.;
+      std::vector<typename Particles::ParticleHandler<dim>::particle_iterator>
+                                particles;
+      std::vector<Support<dim>> supports;
+    };
+
     void
     setup_system();
+
+    /** The GMM counterpart of setup_system(): supports, unknowns, pattern. */
+    void
+    setup_cloud_system();
+
+    /**
+     * Trilinos objects for the current owned and relevant dofs and the
+     * pattern `dsp`.
+     */
+    void
+    reinit_linear_system(DynamicSparsityPattern &dsp);
+
+    /** One group per cell that holds points (MPM). */
+    void
+    build_cell_groups();
+
+    /**
+     * GMM conditions on the nodes that start on walls. LME interpolates on
+     * the boundary of the cloud's hull (weak Kronecker delta), so the held
+     * components of those nodes are set to zero. MLS does not: there the
+     * interpolated displacement at each held node, sum_j N_j(x_d) u_j, is
+     * set to zero, which ties the held nodes' values to their free
+     * neighbours.
+     */
+    void
+    make_cloud_constraints();
+
+    /**
+     * The displacement increment, and in dynamic runs the nodal velocity
+     * and acceleration at the start, of each node of a group.
+     */
+    void
+    gather(const PointGroup &           group,
+           std::vector<Tensor<1, dim>> &du,
+           std::vector<Tensor<1, dim>> &v_n,
+           std::vector<Tensor<1, dim>> &a_n) const;
+
+    /** GMM: the nodes take the step's displacement and Newmark update. */
+    void
+    move_cloud();
 
     /**
      * Grid conditions on the nodes of active cells as constraints; contact
@@ -203,6 +284,10 @@ namespace mpm
     double       gamma;
     bool         lumped_mass;
     double       time_step = 0.;
+
+    std::unique_ptr<MeshfreeBasis<dim>> meshfree;
+    std::unique_ptr<NodeCloud<dim>>     cloud;
+    std::vector<PointGroup>             groups;
 
     hp::FECollection<dim>              fe_collection;
     DoFHandler<dim>                    dof_handler;

@@ -1,0 +1,71 @@
+#include <mpm/basis/node_cloud.h>
+#include <mpm/core/input_error.h>
+
+#include <map>
+
+namespace mpm
+{
+  template <int dim>
+  NodeCloud<dim>::NodeCloud(const MaterialPoints<dim> &      points,
+                            const GridBasis<dim> &           basis,
+                            const DirichletConditions<dim> & dirichlet)
+    : nodal_spacing(basis.minimum_cell_size())
+  {
+    std::map<unsigned int, unsigned int> node_of_vertex;
+    for (const auto &cell : points.get_triangulation().active_cell_iterators())
+      {
+        if (!cell->is_locally_owned() ||
+            points.handler().n_particles_in_cell(cell) == 0)
+          continue;
+        for (const unsigned int v : cell->vertex_indices())
+          if (node_of_vertex.emplace(cell->vertex_index(v), positions.size())
+                .second)
+            {
+              positions.push_back(cell->vertex(v));
+              conditions.push_back(dirichlet.constraint_of(
+                basis.node_of(cell->active_cell_index(), v)));
+            }
+      }
+    velocities.resize(positions.size());
+    accelerations.resize(positions.size());
+    for (unsigned int i = 0; i < size(); ++i)
+      held_components(i); // refuses slanted walls now, not mid-run
+  }
+
+
+
+  template <int dim>
+  std::array<bool, dim>
+  NodeCloud<dim>::held_components(const unsigned int i) const
+  {
+    std::array<bool, dim> held{};
+    const Condition *     condition = conditions[i];
+    if (condition == nullptr)
+      return held;
+    if (condition->n_normals == dim)
+      {
+        held.fill(true);
+        return held;
+      }
+    for (unsigned int k = 0; k < condition->n_normals; ++k)
+      {
+        bool along_axis = false;
+        for (unsigned int a = 0; a < dim; ++a)
+          if (std::abs(std::abs(condition->normals[k][a]) - 1.) < 1e-10)
+            {
+              held[a]    = true;
+              along_axis = true;
+            }
+        if (!along_axis)
+          throw InputError("Boundary conditions: the meshfree methods "
+                           "support slip walls along the grid axes only; "
+                           "material starts on a slanted one.");
+      }
+    return held;
+  }
+
+
+
+  template class NodeCloud<2>;
+  template class NodeCloud<3>;
+} // namespace mpm
