@@ -160,6 +160,18 @@ main(int argc, char **argv)
   run_case("line search with the linear Newton variant",
            with({"Time stepping/Scheme=quasi-static",
                  "Newton/Variant=linear", "Newton/Line search=true"}));
+  run_case("meshfree method with the explicit scheme",
+           with({"Method=GMM-LME"}));
+  run_case("meshfree method with a contact wall",
+           with({"Method=GMM-MLS", "Time stepping/Scheme=quasi-static",
+                 "Boundary conditions/Fixed boundaries=",
+                 "Boundary conditions/Contact boundaries=bottom"}));
+  run_case("MLS dilation that reaches no neighbour",
+           with({"Method=GMM-MLS", "Time stepping/Scheme=quasi-static",
+                 "Meshfree/MLS dilation=0.9"}));
+  run_case("LME gamma of zero",
+           with({"Method=GMM-LME", "Time stepping/Scheme=quasi-static",
+                 "Meshfree/LME gamma=0"}));
   run_case("Newmark without a time step",
            with({"Time stepping/Scheme=Newmark"}));
   run_case("points leave the grid",

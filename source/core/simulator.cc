@@ -587,7 +587,11 @@ namespace mpm
       transfer->compute_nodal_velocity();
       diagnostics = time_series->write_row(time, step, 0., *points);
       if (write_paraview)
-        vtu_output->write(time, *points, nodes, *mapping);
+        vtu_output->write(time,
+                              *points,
+                              nodes,
+                              *mapping,
+                              implicit ? implicit->node_cloud() : nullptr);
     }
     double next_output      = output_interval;
     double next_time_series = time_series_interval;
@@ -642,7 +646,11 @@ namespace mpm
                 transfer->project_mass_momentum(false);
                 transfer->compute_nodal_velocity();
               }
-            vtu_output->write(time, *points, nodes, *mapping);
+            vtu_output->write(time,
+                              *points,
+                              nodes,
+                              *mapping,
+                              implicit ? implicit->node_cloud() : nullptr);
             while (output_interval > 0. &&
                    next_output <= time + time_tolerance)
               next_output += output_interval;
@@ -661,6 +669,15 @@ namespace mpm
           << " particle-steps per second per rank, " << wall
           << " s wall time, peak memory " << peak_memory_mb
           << " MB (all ranks)" << std::endl;
+    if (implicit && implicit->meshfree_basis())
+      {
+        const auto &counts = implicit->meshfree_basis()->statistics();
+        pcout << "meshfree: " << implicit->node_cloud()->size() << " nodes, "
+              << counts.evaluations << " shape-function evaluations, "
+              << counts.radius_growths
+              << " of them with a larger radius (nodes added), "
+              << counts.retries << " retries" << std::endl;
+      }
     timer.print_wall_time_statistics(communicator);
   }
 

@@ -10,6 +10,81 @@
 
 namespace mpm
 {
+  namespace
+  {
+    /**
+     * The meshfree nodes as vertex patches: position, velocity,
+     * acceleration, and which components a wall holds (1 held, 0 free).
+     */
+    template <int dim>
+    class CloudDataOut : public DataOutInterface<0, dim>
+    {
+    public:
+      explicit CloudDataOut(const NodeCloud<dim> &cloud)
+      {
+        const unsigned int n_data = 3 * dim;
+        for (unsigned int i = 0; i < cloud.size(); ++i)
+          {
+            DataOutBase::Patch<0, dim> patch;
+            patch.vertices[0] = cloud.positions[i];
+            patch.patch_index = i;
+            patch.data.reinit(n_data, 1);
+            const std::array<bool, dim> held = cloud.held_components(i);
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                patch.data(d, 0)           = cloud.velocities[i][d];
+                patch.data(dim + d, 0)     = cloud.accelerations[i][d];
+                patch.data(2 * dim + d, 0) = held[d] ? 1. : 0.;
+              }
+            patches.push_back(patch);
+          }
+        for (const std::string name : {"velocity", "acceleration", "held"})
+          for (unsigned int d = 0; d < dim; ++d)
+            names.push_back(name);
+      }
+
+    private:
+      const std::vector<DataOutBase::Patch<0, dim>> &
+      get_patches() const override
+      {
+        return patches;
+      }
+
+      std::vector<std::string>
+      get_dataset_names() const override
+      {
+        return names;
+      }
+
+      std::vector<
+        std::tuple<unsigned int,
+                   unsigned int,
+                   std::string,
+                   DataComponentInterpretation::DataComponentInterpretation>>
+      get_nonscalar_data_ranges() const override
+      {
+        std::vector<std::tuple<
+          unsigned int,
+          unsigned int,
+          std::string,
+          DataComponentInterpretation::DataComponentInterpretation>>
+          ranges;
+        for (unsigned int k = 0; k < 3; ++k)
+          ranges.emplace_back(k * dim,
+                              k * dim + dim - 1,
+                              names[k * dim],
+                              DataComponentInterpretation::
+                                component_is_part_of_vector);
+        return ranges;
+      }
+
+      std::vector<DataOutBase::Patch<0, dim>> patches;
+      std::vector<std::string>                names;
+    };
+  } // namespace
+
+
+
   template <int dim>
   VtuOutput<dim>::VtuOutput(const std::string &directory,
                             const bool         write_grid,
@@ -48,7 +123,8 @@ namespace mpm
   VtuOutput<dim>::write(const double               time,
                         const MaterialPoints<dim> &points,
                         const GridNodes<dim> &     nodes,
-                        const Mapping<dim> &       mapping)
+                        const Mapping<dim> &       mapping,
+                        const NodeCloud<dim> *     cloud)
   {
     using Layout = PointLayout<dim>;
 
@@ -101,6 +177,9 @@ namespace mpm
         data_out.build_patches(mapping);
         write_snapshot(data_out, "grid", time, grid_records);
       }
+
+    if (cloud != nullptr)
+      write_snapshot(CloudDataOut<dim>(*cloud), "nodes", time, cloud_records);
     ++counter;
   }
 

@@ -5,6 +5,7 @@
 #include <deal.II/fe/mapping.h>
 
 #include <mpm/assembly/grid_nodes.h>
+#include <mpm/basis/node_cloud.h>
 #include <mpm/points/material_points.h>
 
 #include <string>
@@ -34,7 +35,8 @@ namespace mpm
     write(const double               time,
           const MaterialPoints<dim> &points,
           const GridNodes<dim> &     nodes,
-          const Mapping<dim> &       mapping);
+          const Mapping<dim> &       mapping,
+          const NodeCloud<dim> *     cloud = nullptr);
 
   private:
     /**
@@ -55,6 +57,7 @@ namespace mpm
 
     std::vector<std::pair<double, std::string>> point_records;
     std::vector<std::pair<double, std::string>> grid_records;
+    std::vector<std::pair<double, std::string>> cloud_records;
   };
 } // namespace mpm
 
