@@ -78,7 +78,12 @@ def read_csv(filename):
 
 def write_results(directory, rows):
     """rows: list of dicts with the same keys."""
-    path = os.path.join(directory, "results.csv")
+    return write_results_as(directory, "results.csv", rows)
+
+
+def write_results_as(directory, name, rows):
+    """write_results under another file name (benchmarks in parts)."""
+    path = os.path.join(directory, name)
     with open(path, "w", newline="") as f:
         writer = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
         writer.writeheader()

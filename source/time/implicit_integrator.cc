@@ -60,10 +60,15 @@ namespace mpm
       "have crossed cells (after Beuth et al., who use Gauss points in full "
       "cells); cells on the material's surface keep point volumes.");
     prm.declare_entry("Linear solver", "direct",
-                      Patterns::Selection("direct|CG-AMG"),
-                      "direct: sparse LU (Trilinos Amesos), for small "
-                      "problems. CG-AMG: conjugate gradients with Trilinos ML "
-                      "algebraic multigrid, for large ones.");
+                      Patterns::Selection("direct|MUMPS|CG-AMG"),
+                      "direct: sparse LU (KLU through Trilinos Amesos), for "
+                      "small problems. MUMPS: the multifrontal sparse LU of "
+                      "MUMPS (Amesos), faster on the wider patterns of the "
+                      "meshfree methods (1.5 times on the column collapse "
+                      "with GMM-LME). CG-AMG: conjugate gradients with "
+                      "Trilinos ML algebraic multigrid, for large problems "
+                      "with a symmetric tangent (not for non-associated "
+                      "plasticity).");
     prm.leave_subsection();
 
     prm.enter_subsection("Newmark");
@@ -323,7 +328,11 @@ namespace mpm
     // MLS, per component a: sum_j N_j(x_d) u_j = 0 at each held node d.
     // With D the held nodes and F the others, A_DD u_D = -A_DF u_F, so
     // u_D = C u_F with C = -A_DD^-1 A_DF, a dense solve of the size of D.
-    Support<dim> support;
+    // The shape functions at every node that holds a component.
+    std::map<unsigned int, Support<dim>> support_at;
+    for (unsigned int i = 0; i < n_nodes; ++i)
+      if (std::find(held[i].begin(), held[i].end(), true) != held[i].end())
+        meshfree->evaluate(cloud->positions[i], support_at[i]);
     for (unsigned int a = 0; a < dim; ++a)
       {
         std::vector<unsigned int>           held_nodes;
@@ -343,7 +352,7 @@ namespace mpm
         std::vector<std::vector<std::pair<unsigned int, double>>> A_DF(n_held);
         for (unsigned int r = 0; r < n_held; ++r)
           {
-            meshfree->evaluate(cloud->positions[held_nodes[r]], support);
+            const Support<dim> &support = support_at[held_nodes[r]];
             for (unsigned int k = 0; k < support.n_nodes; ++k)
               {
                 const unsigned int j = support.nodes[k];
@@ -900,9 +909,13 @@ namespace mpm
     SolverControl control(1000, 1e-10 * residual.l2_norm(), false, false);
     try
       {
-        if (linear_solver == "direct")
+        if (linear_solver != "CG-AMG")
           {
-            TrilinosWrappers::SolverDirect solver(control);
+            TrilinosWrappers::SolverDirect solver(
+              control,
+              TrilinosWrappers::SolverDirect::AdditionalData(
+                false,
+                linear_solver == "MUMPS" ? "Amesos_Mumps" : "Amesos_Klu"));
             solver.solve(tangent, correction, residual);
           }
         else
