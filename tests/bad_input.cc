@@ -162,10 +162,6 @@ main(int argc, char **argv)
                  "Newton/Variant=linear", "Newton/Line search=true"}));
   run_case("meshfree method with the explicit scheme",
            with({"Method=GMM-LME"}));
-  run_case("meshfree method with a contact wall",
-           with({"Method=GMM-MLS", "Time stepping/Scheme=quasi-static",
-                 "Boundary conditions/Fixed boundaries=",
-                 "Boundary conditions/Contact boundaries=bottom"}));
   run_case("MLS dilation that reaches no neighbour",
            with({"Method=GMM-MLS", "Time stepping/Scheme=quasi-static",
                  "Meshfree/MLS dilation=0.9"}));

@@ -28,6 +28,28 @@ namespace mpm
       }
     velocities.resize(positions.size());
     accelerations.resize(positions.size());
+    engaged_wall.assign(positions.size(), -1);
+
+    // The contact walls, from the grid vertices that carry them.
+    for (const auto &cell : points.get_triangulation().active_cell_iterators())
+      {
+        if (!cell->is_locally_owned())
+          continue;
+        for (const unsigned int v : cell->vertex_indices())
+          {
+            const Condition *c = dirichlet.constraint_of(
+              basis.node_of(cell->active_cell_index(), v));
+            if (c == nullptr || !c->unilateral)
+              continue;
+            const double offset = c->outward * cell->vertex(v);
+            bool         known  = false;
+            for (const ContactWall &wall : contact_walls)
+              known |= (wall.outward - c->outward).norm() < 1e-10 &&
+                       std::abs(wall.offset - offset) < 1e-10 * nodal_spacing;
+            if (!known)
+              contact_walls.push_back({c->outward, offset});
+          }
+      }
     for (unsigned int i = 0; i < size(); ++i)
       held_components(i); // refuses slanted walls now, not mid-run
   }
@@ -40,7 +62,12 @@ namespace mpm
   {
     std::array<bool, dim> held{};
     const Condition *     condition = conditions[i];
-    if (condition == nullptr)
+    if (engaged_wall[i] >= 0)
+      {
+        held.fill(true);
+        return held;
+      }
+    if (condition == nullptr || condition->unilateral)
       return held;
     if (condition->n_normals == dim)
       {

@@ -276,11 +276,6 @@ namespace mpm
           throw InputError("Method = " + method + " runs on one rank only; "
                            "run this scene without mpirun, or with "
                            "Method = MPM.");
-        if (dirichlet->has_contact())
-          throw InputError("Boundary conditions/Contact boundaries are not "
-                           "supported with Method = " + method +
-                           "; use Fixed or Slip boundaries, or Method = "
-                           "MPM.");
         meshfree = std::make_unique<MeshfreeBasis<dim>>(
           MeshfreeBasis<dim>::parse_parameters(
             prm,

@@ -296,10 +296,20 @@ namespace mpm
     owned_dofs    = complete_index_set(cloud->size() * dim);
     relevant_dofs = owned_dofs;
     make_cloud_constraints();
+    DynamicSparsityPattern dsp = cloud_sparsity_pattern();
+    reinit_linear_system(dsp);
+  }
+
+
+
+  template <int dim>
+  DynamicSparsityPattern
+  ImplicitIntegrator<dim>::cloud_sparsity_pattern() const
+  {
     DynamicSparsityPattern dsp(relevant_dofs);
     for (const PointGroup &group : groups)
       constraints.add_entries_local_to_global(group.dofs, dsp, true);
-    reinit_linear_system(dsp);
+    return dsp;
   }
 
 
@@ -314,6 +324,19 @@ namespace mpm
     std::vector<std::array<bool, dim>> held(n_nodes);
     for (unsigned int i = 0; i < n_nodes; ++i)
       held[i] = cloud->held_components(i);
+    // A node that no point reaches has no stiffness and no mass: it stays
+    // where it is, which keeps the matrix regular.
+    std::vector<bool> reached(n_nodes, false);
+    for (const PointGroup &group : groups)
+      for (unsigned int k = 0; k < group.supports[0].n_nodes; ++k)
+        reached[group.supports[0].nodes[k]] = true;
+    for (unsigned int i = 0; i < n_nodes; ++i)
+      if (!reached[i])
+        {
+          for (unsigned int a = 0; a < dim; ++a)
+            constraints.add_line(i * dim + a);
+          held[i].fill(false);
+        }
 
     if (meshfree->kind() == MeshfreeBasis<dim>::Kind::lme)
       {
@@ -604,10 +627,79 @@ namespace mpm
                                                     relevant_dofs,
                                                     comm);
     residual_at_nodes = unconstrained_residual;
+    unsigned int released = 0, engaged = 0;
+    if (cloud)
+      {
+        // A held node lets go when its wall pulls. As on the grid, a point
+        // that the step brings within half its spacing of a wall, moving
+        // towards it, engages the nodes next to it (within one nodal
+        // spacing) that lie within that distance of the wall or beyond it.
+        // The cloud's outer nodes reach a wall before the material does,
+        // so the nodes alone cannot tell; and a held node far from the
+        // material would be a pivot that levers the body off the wall.
+        // The cloud lives on one rank.
+        for (unsigned int i = 0; i < cloud->size(); ++i)
+          {
+            const int wall = cloud->engaged_wall[i];
+            if (wall < 0 || changed_contact_nodes.count(i) > 0)
+              continue;
+            double pull = 0.;
+            for (unsigned int a = 0; a < dim; ++a)
+              pull -= residual_at_nodes(i * dim + a) *
+                      cloud->contact_walls[wall].outward[a];
+            if (pull > 0.)
+              {
+                cloud->engaged_wall[i] = -1;
+                changed_contact_nodes.insert(i);
+                ++released;
+              }
+          }
+        using Layout = PointLayout<dim>;
+        for (const PointGroup &group : groups)
+          {
+            const Support<dim> &          support = group.supports[0];
+            const ArrayView<const double> p =
+              group.particles[0]->get_properties();
+            const double reach =
+              0.5 * std::pow(determinant(Layout::get_deformation_gradient(p)) *
+                               p[Layout::reference_volume],
+                             1. / dim);
+            const Point<dim> x_old = group.particles[0]->get_location();
+            Point<dim>       x_new = x_old;
+            for (unsigned int k = 0; k < support.n_nodes; ++k)
+              for (unsigned int a = 0; a < dim; ++a)
+                x_new[a] += support.N[k] * displacement_ghosted(group.dofs[k * dim + a]);
+            for (unsigned int w = 0; w < cloud->contact_walls.size(); ++w)
+              {
+                const auto & c       = cloud->contact_walls[w];
+                const double gap_new = c.offset - c.outward * x_new;
+                if (!(gap_new < reach && gap_new < c.offset - c.outward * x_old))
+                  continue;
+                for (unsigned int k = 0; k < support.n_nodes; ++k)
+                  {
+                    const unsigned int node = support.nodes[k];
+                    const Point<dim> &x_node = cloud->positions[node];
+                    if (cloud->engaged_wall[node] < 0 &&
+                        changed_contact_nodes.count(node) == 0 &&
+                        c.offset - c.outward * x_node < reach &&
+                        x_node.distance(x_new) < cloud->spacing())
+                      {
+                        cloud->engaged_wall[node] = w;
+                        changed_contact_nodes.insert(node);
+                        ++engaged;
+                      }
+                  }
+              }
+          }
+        if (released + engaged > 0)
+          pcout << "    contact: " << released << " node(s) released, "
+                << engaged << " engaged" << std::endl;
+        return released + engaged > 0;
+      }
+
     const TrilinosWrappers::MPI::Vector closing = contact_gaps(true);
     // Ranks that share a node see the same ghosted values and so decide
     // alike; each node is counted by the owner of its first dof.
-    unsigned int released = 0, engaged = 0;
     for_each_contact_node([&](const unsigned int            node,
                               const types::global_dof_index dof0,
                               const auto &                  constraint) {
@@ -978,7 +1070,17 @@ namespace mpm
           throw RunError("The contact nodes did not settle in " +
                          std::to_string(max_contact_rounds) +
                          " rounds of the step.");
-        make_constraints();
+        if (cloud)
+          {
+            // MLS ties newly held nodes to their neighbours: new entries.
+            make_cloud_constraints();
+            tangent.reinit(owned_dofs,
+                           owned_dofs,
+                           cloud_sparsity_pattern(),
+                           points.get_communicator());
+          }
+        else
+          make_constraints();
         constraints.distribute(displacement);
         displacement_ghosted = displacement;
         if (dynamic)

@@ -21,6 +21,10 @@ namespace mpm
    * from then on move with the solution and keep their velocity and
    * acceleration from step to step, as finite element nodes do; the grid
    * is only the frame that holds the points.
+   *
+   * Contact boundaries of the grid hold nodes without slip where the
+   * material reaches them, until the wall pulls (the integrator's active
+   * set).
    */
   template <int dim>
   class NodeCloud
@@ -46,13 +50,20 @@ namespace mpm
     }
 
     /**
-     * The components of node i that a condition holds: component a is held
-     * if the node sits on a fixed wall, or on a slip wall whose normal is
-     * axis a. Throws InputError for slanted slip walls, which the meshfree
-     * method does not support.
+     * The components of node i that a condition holds: all of them if the
+     * node is engaged with a contact wall or sits on a fixed wall, and
+     * component a on a slip wall whose normal is axis a. Throws InputError
+     * for slanted slip walls, which the meshfree method does not support.
      */
     std::array<bool, dim>
     held_components(const unsigned int i) const;
+
+    /** A contact boundary of the grid: the plane outward . x = offset. */
+    struct ContactWall
+    {
+      Tensor<1, dim> outward;
+      double         offset;
+    };
 
     std::vector<Point<dim>>     positions;
     std::vector<Tensor<1, dim>> velocities;
@@ -61,6 +72,13 @@ namespace mpm
     std::vector<const Condition *> conditions;
     /** False until the nodes have taken v and a from the points. */
     bool has_history = false;
+
+    std::vector<ContactWall> contact_walls;
+    /**
+     * Per node, the contact wall that holds it (no slip, as the grid's
+     * contact nodes), or -1 if it is free. Kept from step to step.
+     */
+    std::vector<int> engaged_wall;
 
   private:
     double nodal_spacing;

@@ -115,6 +115,10 @@ namespace mpm
     void
     setup_cloud_system();
 
+    /** GMM: the pattern of the points' supports under the constraints. */
+    DynamicSparsityPattern
+    cloud_sparsity_pattern() const;
+
     /**
      * Trilinos objects for the current owned and relevant dofs and the
      * pattern `dsp`.
