@@ -30,26 +30,41 @@ namespace mpm
     accelerations.resize(positions.size());
     engaged_wall.assign(positions.size(), -1);
 
-    // The contact walls, from the grid vertices that carry them.
+    // The walls, from the boundary faces that carry a condition.
+    using Kind = typename DirichletConditions<dim>::WallKind;
     for (const auto &cell : points.get_triangulation().active_cell_iterators())
       {
         if (!cell->is_locally_owned())
           continue;
-        for (const unsigned int v : cell->vertex_indices())
+        for (const unsigned int f : cell->face_indices())
           {
-            const Condition *c = dirichlet.constraint_of(
-              basis.node_of(cell->active_cell_index(), v));
-            if (c == nullptr || !c->unilateral)
+            if (!cell->at_boundary(f))
               continue;
-            const double offset = c->outward * cell->vertex(v);
+            const Kind kind = dirichlet.kind_of(cell->face(f)->boundary_id());
+            if (kind == Kind::none)
+              continue;
+            const Tensor<1, dim> outward =
+              cell->face(f)->center() - cell->center();
+            unsigned int axis = 0;
+            for (unsigned int d = 1; d < dim; ++d)
+              if (std::abs(outward[d]) > std::abs(outward[axis]))
+                axis = d;
+            Tensor<1, dim> normal;
+            normal[axis] = outward[axis] > 0. ? 1. : -1.;
+            if ((outward - (outward * normal) * normal).norm() >
+                1e-10 * outward.norm())
+              throw InputError("Boundary conditions: the meshfree methods "
+                               "support walls along the grid axes only.");
+            const double offset = normal * cell->face(f)->center();
             bool         known  = false;
-            for (const ContactWall &wall : contact_walls)
-              known |= (wall.outward - c->outward).norm() < 1e-10 &&
+            for (const Wall &wall : walls)
+              known |= wall.axis == axis && wall.outward * normal > 0. &&
                        std::abs(wall.offset - offset) < 1e-10 * nodal_spacing;
             if (!known)
-              contact_walls.push_back({c->outward, offset});
+              walls.push_back({normal, offset, axis, kind});
           }
       }
+
     for (unsigned int i = 0; i < size(); ++i)
       held_components(i); // refuses slanted walls now, not mid-run
   }
@@ -61,12 +76,15 @@ namespace mpm
   NodeCloud<dim>::held_components(const unsigned int i) const
   {
     std::array<bool, dim> held{};
-    const Condition *     condition = conditions[i];
     if (engaged_wall[i] >= 0)
       {
-        held.fill(true);
-        return held;
+        const Wall &wall = walls[engaged_wall[i]];
+        if (wall.kind == DirichletConditions<dim>::WallKind::slip)
+          held[wall.axis] = true;
+        else
+          held.fill(true);
       }
+    const Condition *condition = conditions[i];
     if (condition == nullptr || condition->unilateral)
       return held;
     if (condition->n_normals == dim)

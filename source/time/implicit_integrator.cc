@@ -629,17 +629,20 @@ namespace mpm
   ImplicitIntegrator<dim>::update_contact_set()
   {
     const MPI_Comm                comm = points.get_communicator();
+    // The out-of-balance force before constraints, kept for contact walls.
     TrilinosWrappers::MPI::Vector residual_at_nodes(owned_dofs,
                                                     relevant_dofs,
                                                     comm);
-    residual_at_nodes = unconstrained_residual;
+    if (dirichlet.has_contact())
+      residual_at_nodes = unconstrained_residual;
     unsigned int released = 0, engaged = 0;
     if (cloud)
       {
-        // A held node lets go when its wall pulls. As on the grid, a point
-        // that the step brings within half its spacing of a wall, moving
-        // towards it, engages the nodes next to it (within one nodal
-        // spacing) that lie within that distance of the wall or beyond it.
+        // A node held by a contact wall lets go when the wall pulls. As on
+        // the grid, a point that the step brings within half its spacing
+        // of a wall, moving towards it, engages the nodes next to it
+        // (within one nodal spacing) that lie within that distance of the
+        // wall or beyond it.
         // The cloud's outer nodes reach a wall before the material does,
         // so the nodes alone cannot tell; and a held node far from the
         // material would be a pivot that levers the body off the wall.
@@ -647,12 +650,14 @@ namespace mpm
         for (unsigned int i = 0; i < cloud->size(); ++i)
           {
             const int wall = cloud->engaged_wall[i];
-            if (wall < 0 || changed_contact_nodes.count(i) > 0)
+            if (wall < 0 || changed_contact_nodes.count(i) > 0 ||
+                cloud->walls[wall].kind !=
+                  DirichletConditions<dim>::WallKind::contact)
               continue;
             double pull = 0.;
             for (unsigned int a = 0; a < dim; ++a)
               pull -= residual_at_nodes(i * dim + a) *
-                      cloud->contact_walls[wall].outward[a];
+                      cloud->walls[wall].outward[a];
             if (pull > 0.)
               {
                 cloud->engaged_wall[i] = -1;
@@ -675,9 +680,9 @@ namespace mpm
             for (unsigned int k = 0; k < support.n_nodes; ++k)
               for (unsigned int a = 0; a < dim; ++a)
                 x_new[a] += support.N[k] * displacement_ghosted(group.dofs[k * dim + a]);
-            for (unsigned int w = 0; w < cloud->contact_walls.size(); ++w)
+            for (unsigned int w = 0; w < cloud->walls.size(); ++w)
               {
-                const auto & c       = cloud->contact_walls[w];
+                const auto & c       = cloud->walls[w];
                 const double gap_new = c.offset - c.outward * x_new;
                 if (!(gap_new < reach && gap_new < c.offset - c.outward * x_old))
                   continue;
@@ -698,8 +703,8 @@ namespace mpm
               }
           }
         if (released + engaged > 0)
-          pcout << "    contact: " << released << " node(s) released, "
-                << engaged << " engaged" << std::endl;
+          pcout << "    walls: " << released << " node(s) released, "
+                << engaged << " held" << std::endl;
         return released + engaged > 0;
       }
 
@@ -1070,7 +1075,9 @@ namespace mpm
     for (unsigned int round = 1;; ++round)
       {
         solve_newton(load_factor);
-        if (!dirichlet.has_contact() || !update_contact_set())
+        const bool active_set =
+          dirichlet.has_contact() || (cloud && !cloud->walls.empty());
+        if (!active_set || !update_contact_set())
           break;
         if (round == max_contact_rounds)
           throw RunError("The contact nodes did not settle in " +

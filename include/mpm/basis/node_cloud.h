@@ -22,9 +22,9 @@ namespace mpm
    * acceleration from step to step, as finite element nodes do; the grid
    * is only the frame that holds the points.
    *
-   * Contact boundaries of the grid hold nodes without slip where the
-   * material reaches them, until the wall pulls (the integrator's active
-   * set).
+   * The grid's walls hold nodes where the material reaches them (see
+   * Wall): the cloud is not tied to the grid, so a node that did not
+   * start on a wall can come to one.
    */
   template <int dim>
   class NodeCloud
@@ -50,19 +50,26 @@ namespace mpm
     }
 
     /**
-     * The components of node i that a condition holds: all of them if the
-     * node is engaged with a contact wall or sits on a fixed wall, and
-     * component a on a slip wall whose normal is axis a. Throws InputError
-     * for slanted slip walls, which the meshfree method does not support.
+     * The components of node i that a wall holds: those of the wall it
+     * started on (all on a fixed wall, the normal one on a slip wall) and
+     * those of the wall it was brought to (see Wall).
      */
     std::array<bool, dim>
     held_components(const unsigned int i) const;
 
-    /** A contact boundary of the grid: the plane outward . x = offset. */
-    struct ContactWall
+    /**
+     * A wall of the grid, the plane outward . x = offset, along an axis.
+     * Nodes that do not start on it are held there once the material
+     * reaches it (the integrator's active set): all components on fixed
+     * and contact walls, the normal one on slip walls; only contact walls
+     * let go again.
+     */
+    struct Wall
     {
       Tensor<1, dim> outward;
       double         offset;
+      unsigned int   axis;
+      typename DirichletConditions<dim>::WallKind kind;
     };
 
     std::vector<Point<dim>>     positions;
@@ -73,10 +80,10 @@ namespace mpm
     /** False until the nodes have taken v and a from the points. */
     bool has_history = false;
 
-    std::vector<ContactWall> contact_walls;
+    std::vector<Wall> walls;
     /**
-     * Per node, the contact wall that holds it (no slip, as the grid's
-     * contact nodes), or -1 if it is free. Kept from step to step.
+     * Per node, the wall that the material has brought it to, or -1. Kept
+     * from step to step.
      */
     std::vector<int> engaged_wall;
 

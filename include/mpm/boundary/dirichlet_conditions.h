@@ -7,6 +7,7 @@
 #include <mpm/assembly/grid_nodes.h>
 #include <mpm/grid/background_grid.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -87,6 +88,27 @@ namespace mpm
     has_contact() const
     {
       return !contact_ids.empty();
+    }
+
+    enum class WallKind
+    {
+      none,
+      fixed,
+      slip,
+      contact
+    };
+
+    /** The condition on the boundary faces with this id. */
+    WallKind
+    kind_of(const types::boundary_id id) const
+    {
+      auto in = [id](const std::vector<types::boundary_id> &ids) {
+        return std::find(ids.begin(), ids.end(), id) != ids.end();
+      };
+      return in(fixed_ids)   ? WallKind::fixed :
+             in(slip_ids)    ? WallKind::slip :
+             in(contact_ids) ? WallKind::contact :
+                               WallKind::none;
     }
 
     /** The constraint of a node (a GridNodes local index), or nullptr. */
