@@ -338,14 +338,18 @@ namespace mpm
         const double         log_Z_start = log_Z;
         const Tensor<1, dim> r_start     = r;
         double               t           = 1.;
-        for (unsigned int cut = 0; cut < 30; ++cut, t *= 0.5)
+        bool                 decreased   = false;
+        for (unsigned int cut = 0; cut < 30 && !decreased; ++cut)
           {
+            if (cut > 0)
+              t *= 0.5;
             log_Z = values(lambda + t * step);
             r     = gradient();
-            if (log_Z <= log_Z_start + 1e-4 * t * (r_start * step) ||
-                r.norm() < r_start.norm())
-              break;
+            decreased = log_Z <= log_Z_start + 1e-4 * t * (r_start * step) ||
+                        r.norm() < r_start.norm();
           }
+        if (!decreased)
+          return false;
         lambda += t * step;
       }
     if (!converged)

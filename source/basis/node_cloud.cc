@@ -28,7 +28,7 @@ namespace mpm
       }
     velocities.resize(positions.size());
     accelerations.resize(positions.size());
-    engaged_wall.assign(positions.size(), -1);
+    engaged_walls.assign(positions.size(), 0u);
 
     // The walls, from the boundary faces that carry a condition.
     using Kind = typename DirichletConditions<dim>::WallKind;
@@ -58,13 +58,24 @@ namespace mpm
             const double offset = normal * cell->face(f)->center();
             bool         known  = false;
             for (const Wall &wall : walls)
-              known |= wall.axis == axis && wall.outward * normal > 0. &&
-                       std::abs(wall.offset - offset) < 1e-10 * nodal_spacing;
+              if (wall.axis == axis && wall.outward * normal > 0. &&
+                  std::abs(wall.offset - offset) < 1e-10 * nodal_spacing)
+                {
+                  // Walls are planes here; one plane with two conditions
+                  // would need the extent of each.
+                  if (wall.kind != kind)
+                    throw InputError(
+                      "Boundary conditions: the meshfree methods need one "
+                      "condition per plane of the grid's boundary; a plane "
+                      "carries two.");
+                  known = true;
+                }
             if (!known)
               walls.push_back({normal, offset, axis, kind});
           }
       }
 
+    AssertThrow(walls.size() <= 32, ExcMessage("More than 32 walls."));
     for (unsigned int i = 0; i < size(); ++i)
       held_components(i); // refuses slanted walls now, not mid-run
   }
@@ -76,14 +87,14 @@ namespace mpm
   NodeCloud<dim>::held_components(const unsigned int i) const
   {
     std::array<bool, dim> held{};
-    if (engaged_wall[i] >= 0)
-      {
-        const Wall &wall = walls[engaged_wall[i]];
-        if (wall.kind == DirichletConditions<dim>::WallKind::slip)
-          held[wall.axis] = true;
-        else
-          held.fill(true);
-      }
+    for (unsigned int w = 0; w < walls.size(); ++w)
+      if (is_held_by(i, w))
+        {
+          if (walls[w].kind == DirichletConditions<dim>::WallKind::slip)
+            held[walls[w].axis] = true;
+          else
+            held.fill(true);
+        }
     const Condition *condition = conditions[i];
     if (condition == nullptr || condition->unilateral)
       return held;

@@ -58,7 +58,9 @@ namespace mpm
       "face neighbours all hold material, the point volumes are scaled to "
       "fill the cell, so a uniform stress is in equilibrium however points "
       "have crossed cells (after Beuth et al., who use Gauss points in full "
-      "cells); cells on the material's surface keep point volumes.");
+      "cells); cells on the material's surface keep point volumes. MPM "
+      "only: the meshfree methods always weigh point volumes, as Iaconeta "
+      "et al. do.");
     prm.declare_entry("Linear solver", "direct",
                       Patterns::Selection("direct|MUMPS|CG-AMG"),
                       "direct: sparse LU (KLU through Trilinos Amesos), for "
@@ -237,25 +239,44 @@ namespace mpm
   void
   ImplicitIntegrator<dim>::build_cell_groups()
   {
-    groups.clear();
+    unsigned int n_groups = 0;
     for (const auto &cell : dof_handler.active_cell_iterators())
       {
         if (!cell->is_locally_owned() || cell->active_fe_index() != 0)
           continue;
-        PointGroup &group = groups.emplace_back();
+        PointGroup &group = next_group(n_groups);
         group.dofs.resize(fe_collection[0].n_dofs_per_cell());
         cell->get_dof_indices(group.dofs);
         group.weight = quadrature_scale(cell);
+        group.supports.resize(points.handler().n_particles_in_cell(cell));
+        unsigned int q = 0;
         for (auto particle = points.handler().particles_in_cell(cell).begin();
              particle != points.handler().particles_in_cell(cell).end();
-             ++particle)
+             ++particle, ++q)
           {
             group.particles.push_back(particle);
             basis.evaluate(cell->active_cell_index(),
                            particle->get_reference_location(),
-                           group.supports.emplace_back());
+                           group.supports[q]);
           }
       }
+    groups.resize(n_groups);
+  }
+
+
+
+  template <int dim>
+  typename ImplicitIntegrator<dim>::PointGroup &
+  ImplicitIntegrator<dim>::next_group(unsigned int &n_groups)
+  {
+    // Groups are reused from step to step, so that their vectors keep
+    // their memory.
+    if (n_groups == groups.size())
+      groups.emplace_back();
+    PointGroup &group = groups[n_groups++];
+    group.particles.clear();
+    group.weight = 1.;
+    return group;
   }
 
 
@@ -267,14 +288,15 @@ namespace mpm
     {
       TimerOutput::Scope t(timer, "meshfree shape functions");
       meshfree->reinit(cloud->positions);
-      groups.clear();
+      unsigned int n_groups = 0;
       for (auto particle = points.handler().begin();
            particle != points.handler().end();
            ++particle)
         {
-          PointGroup &group = groups.emplace_back();
+          PointGroup &group = next_group(n_groups);
           group.particles.push_back(particle);
-          Support<dim> &support = group.supports.emplace_back();
+          group.supports.resize(1);
+          Support<dim> &support = group.supports[0];
           try
             {
               meshfree->evaluate(particle->get_location(), support);
@@ -291,7 +313,28 @@ namespace mpm
             for (unsigned int a = 0; a < dim; ++a)
               group.dofs[i * dim + a] = support.nodes[i] * dim + a;
         }
+      groups.resize(n_groups);
     }
+    // MLS shape functions can be negative: a lumped nodal mass must still
+    // be positive.
+    if (dynamic && lumped_mass &&
+        meshfree->kind() == MeshfreeBasis<dim>::Kind::mls)
+      {
+        std::vector<double> nodal_mass(cloud->size(), 0.);
+        for (const PointGroup &group : groups)
+          for (unsigned int k = 0; k < group.supports[0].n_nodes; ++k)
+            nodal_mass[group.supports[0].nodes[k]] +=
+              group.supports[0].N[k] *
+              group.particles[0]->get_properties()[PointLayout<dim>::mass];
+        for (unsigned int i = 0; i < cloud->size(); ++i)
+          if (nodal_mass[i] < 0.)
+            throw RunError("Node " + std::to_string(i) + " at (" +
+                             Utilities::to_string(cloud->positions[i][0]) +
+                             ", ...) has a negative lumped MLS mass; use "
+                             "Newmark/Mass matrix = consistent, or "
+                             "Method = GMM-LME.",
+                           false);
+      }
     // One rank holds the whole cloud (the simulator refuses more).
     owned_dofs    = complete_index_set(cloud->size() * dim);
     relevant_dofs = owned_dofs;
@@ -309,6 +352,9 @@ namespace mpm
     DynamicSparsityPattern dsp(relevant_dofs);
     for (const PointGroup &group : groups)
       constraints.add_entries_local_to_global(group.dofs, dsp, true);
+    for (const unsigned int node : unreached_nodes)
+      for (unsigned int a = 0; a < dim; ++a)
+        dsp.add(node * dim + a, node * dim + a);
     return dsp;
   }
 
@@ -330,12 +376,14 @@ namespace mpm
     for (const PointGroup &group : groups)
       for (unsigned int k = 0; k < group.supports[0].n_nodes; ++k)
         reached[group.supports[0].nodes[k]] = true;
+    unreached_nodes.clear();
     for (unsigned int i = 0; i < n_nodes; ++i)
       if (!reached[i])
         {
           for (unsigned int a = 0; a < dim; ++a)
             constraints.add_line(i * dim + a);
           held[i].fill(false);
+          unreached_nodes.push_back(i);
         }
 
     if (meshfree->kind() == MeshfreeBasis<dim>::Kind::lme)
@@ -355,7 +403,16 @@ namespace mpm
     std::map<unsigned int, Support<dim>> support_at;
     for (unsigned int i = 0; i < n_nodes; ++i)
       if (std::find(held[i].begin(), held[i].end(), true) != held[i].end())
-        meshfree->evaluate(cloud->positions[i], support_at[i]);
+        try
+          {
+            meshfree->evaluate(cloud->positions[i], support_at[i]);
+          }
+        catch (const RunError &e)
+          {
+            throw RunError("The MLS wall condition at node " +
+                             std::to_string(i) + ": " + e.what(),
+                           false);
+          }
     for (unsigned int a = 0; a < dim; ++a)
       {
         std::vector<unsigned int>           held_nodes;
@@ -410,7 +467,8 @@ namespace mpm
         for (unsigned int r = 0; r < n_held; ++r)
           {
             const types::global_dof_index row = held_nodes[r] * dim + a;
-            const double cut = 1e-9 * C.row(r).cwiseAbs().maxCoeff();
+            const double cut =
+              free_nodes.empty() ? 0. : 1e-9 * C.row(r).cwiseAbs().maxCoeff();
             constraints.add_line(row);
             for (unsigned int c = 0; c < free_nodes.size(); ++c)
               if (std::abs(C(r, c)) > cut)
@@ -647,24 +705,28 @@ namespace mpm
         // so the nodes alone cannot tell; and a held node far from the
         // material would be a pivot that levers the body off the wall.
         // The cloud lives on one rank.
+        // A node may be held by several walls (at a corner); each
+        // (node, wall) pair changes at most once per step.
+        const unsigned int n_walls = cloud->walls.size();
         for (unsigned int i = 0; i < cloud->size(); ++i)
-          {
-            const int wall = cloud->engaged_wall[i];
-            if (wall < 0 || changed_contact_nodes.count(i) > 0 ||
-                cloud->walls[wall].kind !=
-                  DirichletConditions<dim>::WallKind::contact)
-              continue;
-            double pull = 0.;
-            for (unsigned int a = 0; a < dim; ++a)
-              pull -= residual_at_nodes(i * dim + a) *
-                      cloud->walls[wall].outward[a];
-            if (pull > 0.)
-              {
-                cloud->engaged_wall[i] = -1;
-                changed_contact_nodes.insert(i);
-                ++released;
-              }
-          }
+          for (unsigned int w = 0; w < n_walls; ++w)
+            {
+              if (!cloud->is_held_by(i, w) ||
+                  changed_contact_nodes.count(i * n_walls + w) > 0 ||
+                  cloud->walls[w].kind !=
+                    DirichletConditions<dim>::WallKind::contact)
+                continue;
+              double pull = 0.;
+              for (unsigned int a = 0; a < dim; ++a)
+                pull -= residual_at_nodes(i * dim + a) *
+                        cloud->walls[w].outward[a];
+              if (pull > 0.)
+                {
+                  cloud->engaged_walls[i] &= ~(1u << w);
+                  changed_contact_nodes.insert(i * n_walls + w);
+                  ++released;
+                }
+            }
         using Layout = PointLayout<dim>;
         for (const PointGroup &group : groups)
           {
@@ -690,13 +752,13 @@ namespace mpm
                   {
                     const unsigned int node = support.nodes[k];
                     const Point<dim> &x_node = cloud->positions[node];
-                    if (cloud->engaged_wall[node] < 0 &&
-                        changed_contact_nodes.count(node) == 0 &&
+                    if (!cloud->is_held_by(node, w) &&
+                        changed_contact_nodes.count(node * n_walls + w) == 0 &&
                         c.offset - c.outward * x_node < reach &&
                         x_node.distance(x_new) < cloud->spacing())
                       {
-                        cloud->engaged_wall[node] = w;
-                        changed_contact_nodes.insert(node);
+                        cloud->engaged_walls[node] |= 1u << w;
+                        changed_contact_nodes.insert(node * n_walls + w);
                         ++engaged;
                       }
                   }
@@ -956,6 +1018,12 @@ namespace mpm
         if (dirichlet.has_contact())
           unconstrained_residual.add(dofs, cell_residual);
       }
+    // A node that no point reaches has an empty row: a unit diagonal
+    // keeps the matrix regular (its dofs are held at zero).
+    if (with_tangent)
+      for (const unsigned int node : unreached_nodes)
+        for (unsigned int a = 0; a < dim; ++a)
+          tangent.add(node * dim + a, node * dim + a, 1.);
     // Compress before a throw: entries buffered for other ranks would
     // otherwise survive `= 0.` and join the next assembly (a line search
     // goes on after a failed trial).
@@ -1046,6 +1114,31 @@ namespace mpm
   template <int dim>
   void
   ImplicitIntegrator<dim>::step(const double load_factor, const double dt)
+  {
+    // A failed step is retried with half the size from the same state, so
+    // the walls' active set must not keep what the failed attempt did.
+    const std::set<unsigned int> engaged_before = engaged_contact_nodes;
+    const std::vector<unsigned int> cloud_engaged_before =
+      cloud ? cloud->engaged_walls : std::vector<unsigned int>();
+    try
+      {
+        solve_step(load_factor, dt);
+      }
+    catch (...)
+      {
+        engaged_contact_nodes = engaged_before;
+        if (cloud)
+          cloud->engaged_walls = cloud_engaged_before;
+        throw;
+      }
+  }
+
+
+
+  template <int dim>
+  void
+  ImplicitIntegrator<dim>::solve_step(const double load_factor,
+                                      const double dt)
   {
     time_step = dt;
     {

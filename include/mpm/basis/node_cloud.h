@@ -82,10 +82,16 @@ namespace mpm
 
     std::vector<Wall> walls;
     /**
-     * Per node, the wall that the material has brought it to, or -1. Kept
-     * from step to step.
+     * Per node, the walls that the material has brought it to, bit w for
+     * walls[w]. Kept from step to step.
      */
-    std::vector<int> engaged_wall;
+    std::vector<unsigned int> engaged_walls;
+
+    bool
+    is_held_by(const unsigned int i, const unsigned int w) const
+    {
+      return (engaged_walls[i] >> w) & 1u;
+    }
 
   private:
     double nodal_spacing;

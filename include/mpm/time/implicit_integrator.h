@@ -111,6 +111,10 @@ namespace mpm
     void
     setup_system();
 
+    /** step() without restoring the active set when it throws. */
+    void
+    solve_step(const double load_factor, const double dt);
+
     /** The GMM counterpart of setup_system(): supports, unknowns, pattern. */
     void
     setup_cloud_system();
@@ -125,6 +129,10 @@ namespace mpm
      */
     void
     reinit_linear_system(DynamicSparsityPattern &dsp);
+
+    /** The next group to fill, counting in n_groups. */
+    PointGroup &
+    next_group(unsigned int &n_groups);
 
     /** One group per cell that holds points (MPM). */
     void
@@ -292,6 +300,8 @@ namespace mpm
     std::unique_ptr<MeshfreeBasis<dim>> meshfree;
     std::unique_ptr<NodeCloud<dim>>     cloud;
     std::vector<PointGroup>             groups;
+    /** GMM: nodes in no point's support, held at zero. */
+    std::vector<unsigned int>           unreached_nodes;
 
     hp::FECollection<dim>              fe_collection;
     DoFHandler<dim>                    dof_handler;
