@@ -31,7 +31,6 @@
 //   above MPM and below the reference.
 
 #include <deal.II/base/mpi.h>
-#include <deal.II/base/numbers.h>
 #include <deal.II/base/point.h>
 #include <deal.II/base/quadrature_lib.h>
 
@@ -180,14 +179,7 @@ main(int argc, char **argv)
                                       {"Method=" + method,
                                        "Time stepping/End time=0.1"});
       const double t = csv["time"].back();
-      const double rolling =
-        0.5 * (2. / 3.) * 9.81 * std::sin(numbers::PI / 3) * t * t;
-      const double ratio =
-        (csv["centre_of_mass_x"].back() - csv["centre_of_mass_x"][0]) /
-        rolling;
-      double drift = 0.;
-      for (const double y : csv["centre_of_mass_y"])
-        drift = std::max(drift, std::abs(y - csv["centre_of_mass_y"][0]));
+      const auto [ratio, drift] = mpm_tests::rolling_disk_ratio_and_drift(csv);
       check(method + ": the disk rolls (75 % to 105 % of a t^2 / 2 at 0.1 s; "
                      "sliding gives 150 %)",
             t > 0.1 - 1e-9 && ratio > 0.75 && ratio < 1.05);

@@ -5,10 +5,12 @@
 
 #include <deal.II/base/logstream.h>
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/numbers.h>
 #include <deal.II/base/symmetric_tensor.h>
 
 #include <mpm/core/application.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -78,6 +80,26 @@ namespace mpm_tests
       }
     return columns;
   }
+  /**
+   * The rolling disk of prm/rolling_disk.prm: the centre's displacement
+   * along the plane over the exact rolling a t^2 / 2, a = 2/3 g sin 60
+   * degrees (benchmarks.md section 2), and the largest change of the
+   * centre's height.
+   */
+  inline std::pair<double, double>
+  rolling_disk_ratio_and_drift(std::map<std::string, std::vector<double>> &csv)
+  {
+    const double t       = csv["time"].back();
+    const double rolling = 0.5 * (2. / 3.) * 9.81 *
+                           std::sin(dealii::numbers::PI / 3.) * t * t;
+    double drift = 0.;
+    for (const double y : csv["centre_of_mass_y"])
+      drift = std::max(drift, std::abs(y - csv["centre_of_mass_y"][0]));
+    return {(csv["centre_of_mass_x"].back() - csv["centre_of_mass_x"][0]) /
+              rolling,
+            drift};
+  }
+
   /**
    * Run a scene through the mpm command line with its output in
    * `directory` (no ParaView files) and the given 'Section/entry=value'

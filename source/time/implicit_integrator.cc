@@ -502,8 +502,7 @@ namespace mpm
         if (dynamic)
           {
             const Tensor<1, dim> a_new = end_acceleration(du, v, a);
-            cloud->velocities[i] = v + time_step * ((1. - gamma) * a +
-                                                    gamma * a_new);
+            cloud->velocities[i] = v + velocity_increment(a, a_new);
             cloud->accelerations[i] = a_new;
           }
       }
@@ -649,11 +648,7 @@ namespace mpm
         for (const auto &particle : points.handler().particles_in_cell(cell))
           {
             const ArrayView<const double> p = particle.get_properties();
-            // The material of a point reaches half its spacing beyond it.
-            const double reach =
-              0.5 * std::pow(determinant(Layout::get_deformation_gradient(p)) *
-                               p[Layout::reference_volume],
-                             1. / dim);
+            const double reach = reach_of(p);
             Point<dim> x = particle.get_location();
             if (after_solve)
               {
@@ -727,16 +722,10 @@ namespace mpm
                   ++released;
                 }
             }
-        using Layout = PointLayout<dim>;
         for (const PointGroup &group : groups)
           {
-            const Support<dim> &          support = group.supports[0];
-            const ArrayView<const double> p =
-              group.particles[0]->get_properties();
-            const double reach =
-              0.5 * std::pow(determinant(Layout::get_deformation_gradient(p)) *
-                               p[Layout::reference_volume],
-                             1. / dim);
+            const Support<dim> &support = group.supports[0];
+            const double reach = reach_of(group.particles[0]->get_properties());
             const Point<dim> x_old = group.particles[0]->get_location();
             Point<dim>       x_new = x_old;
             for (unsigned int k = 0; k < support.n_nodes; ++k)
@@ -1341,10 +1330,10 @@ namespace mpm
                     a_new +=
                       support.N[i] * end_acceleration(du[i], v_n[i], a_n[i]);
                   }
+                const Tensor<1, dim> dv = velocity_increment(a_old, a_new);
                 for (unsigned int d = 0; d < dim; ++d)
                   {
-                    p[Layout::velocity + d] +=
-                      time_step * ((1. - gamma) * a_old[d] + gamma * a_new[d]);
+                    p[Layout::velocity + d] += dv[d];
                     p[points.acceleration_index() + d] = a_new[d];
                   }
               }

@@ -222,6 +222,28 @@ namespace mpm
              (beta * time_step * time_step);
     }
 
+    /** Newmark: the velocity gained over the step from a at its ends. */
+    Tensor<1, dim>
+    velocity_increment(const Tensor<1, dim> &a_old,
+                       const Tensor<1, dim> &a_new) const
+    {
+      return time_step * ((1. - gamma) * a_old + gamma * a_new);
+    }
+
+    /**
+     * How far the material of a point reaches beyond it, half its spacing:
+     * the distance at which a wall holds it.
+     */
+    static double
+    reach_of(const ArrayView<const double> &p)
+    {
+      using Layout = PointLayout<dim>;
+      return 0.5 *
+             std::pow(determinant(Layout::get_deformation_gradient(p)) *
+                        p[Layout::reference_volume],
+                      1. / dim);
+    }
+
     /** Residual f_ext - f_int into `residual`, and the tangent if asked. */
     void
     assemble(const double load_factor, const bool with_tangent);
