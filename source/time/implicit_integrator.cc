@@ -889,6 +889,7 @@ namespace mpm
     if (with_tangent)
       tangent = 0.;
     double internal_force_square = 0.;
+    double momentum_rate_square  = 0.;
     bool   inverted              = false;
 
     FullMatrix<double>          cell_tangent;
@@ -975,6 +976,9 @@ namespace mpm
                     a_point += support.N[k] * a_node[k];
                   }
                 const double m = p[Layout::mass];
+                momentum_rate_square +=
+                  m * m * Layout::get_velocity(p).norm_square() /
+                  (time_step * time_step);
                 for (unsigned int i = 0; i < support.n_nodes; ++i)
                   {
                     const double mass_i = support.N[i] * m;
@@ -1027,12 +1031,20 @@ namespace mpm
                      "0).");
 
     // The scale of the forces ([B] eq. 31): the external load, or, where
-    // none acts (a scene driven by its boundaries alone), the internal
-    // forces cell by cell.
+    // none acts (a scene driven by its boundaries or its initial motion),
+    // the internal forces cell by cell, and in dynamic runs the momentum
+    // rate m v_n / dt, whichever is larger. A residual r changes the step's
+    // velocities by r dt / m, so against m v_n / dt the ratio is the
+    // relative velocity error; without it a body in free flight would
+    // compare round-off with round-off and never converge.
     external_force_norm = correction.l2_norm();
     if (!(external_force_norm > 0.))
-      external_force_norm = std::sqrt(
-        Utilities::MPI::sum(internal_force_square, points.get_communicator()));
+      {
+        const MPI_Comm comm = points.get_communicator();
+        external_force_norm =
+          std::sqrt(std::max(Utilities::MPI::sum(internal_force_square, comm),
+                             Utilities::MPI::sum(momentum_rate_square, comm)));
+      }
   }
 
 
