@@ -1034,9 +1034,9 @@ namespace mpm
     // none acts (a scene driven by its boundaries or its initial motion),
     // the internal forces cell by cell, and in dynamic runs the momentum
     // rate m v_n / dt, whichever is larger. A residual r changes the step's
-    // velocities by r dt / m, so against m v_n / dt the ratio is the
-    // relative velocity error; without it a body in free flight would
-    // compare round-off with round-off and never converge.
+    // velocities by the order of r dt / m, so against m v_n / dt the ratio
+    // is of the order of the relative velocity error; without it a body in
+    // free flight would compare round-off with round-off and never converge.
     external_force_norm = correction.l2_norm();
     if (!(external_force_norm > 0.))
       {
