@@ -1040,10 +1040,11 @@ namespace mpm
     external_force_norm = correction.l2_norm();
     if (!(external_force_norm > 0.))
       {
-        const MPI_Comm comm = points.get_communicator();
-        external_force_norm =
-          std::sqrt(std::max(Utilities::MPI::sum(internal_force_square, comm),
-                             Utilities::MPI::sum(momentum_rate_square, comm)));
+        Tensor<1, 2> squares;
+        squares[0] = internal_force_square;
+        squares[1] = momentum_rate_square;
+        squares    = Utilities::MPI::sum(squares, points.get_communicator());
+        external_force_norm = std::sqrt(std::max(squares[0], squares[1]));
       }
   }
 
