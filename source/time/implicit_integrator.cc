@@ -1205,12 +1205,14 @@ namespace mpm
   ImplicitIntegrator<dim>::solve_newton(const double load_factor)
   {
     bool converged = false;
+    bool assembled = false; // the line search assembled at this iterate
     for (unsigned int iteration = 0; iteration <= max_iterations; ++iteration)
       {
-        {
-          TimerOutput::Scope t(timer, "assemble");
-          assemble(load_factor, iteration == 0 || !modified_newton);
-        }
+        if (!assembled)
+          {
+            TimerOutput::Scope t(timer, "assemble");
+            assemble(load_factor, iteration == 0 || !modified_newton);
+          }
         const double ratio =
           external_force_norm > 0. ? residual.l2_norm() / external_force_norm :
                                      0.;
@@ -1234,7 +1236,8 @@ namespace mpm
         displacement += correction;
         displacement_ghosted = displacement;
         if (line_search)
-          search_along_correction(load_factor, ratio * external_force_norm);
+          assembled =
+            search_along_correction(load_factor, ratio * external_force_norm);
       }
     if (!converged)
       {
@@ -1252,7 +1255,7 @@ namespace mpm
 
 
   template <int dim>
-  void
+  bool
   ImplicitIntegrator<dim>::search_along_correction(
     const double load_factor,
     const double residual_norm)
@@ -1266,8 +1269,9 @@ namespace mpm
         double trial = std::numeric_limits<double>::infinity();
         try
           {
+            // With the tangent: the trial kept is the next Newton iterate.
             TimerOutput::Scope t(timer, "assemble");
-            assemble(load_factor, false);
+            assemble(load_factor, !modified_newton);
             // Norms, not ratios: without external loads the scale is the
             // internal force, which the trial changes.
             trial = residual.l2_norm();
@@ -1283,7 +1287,7 @@ namespace mpm
                     << " of the correction"
                     << (trial < residual_norm ? "" : ", no decrease")
                     << std::endl;
-            return;
+            return std::isfinite(trial);
           }
         step /= 2.;
         displacement.add(-step, direction);

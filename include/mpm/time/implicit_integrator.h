@@ -270,8 +270,11 @@ namespace mpm
      * After displacement += correction: halve the correction (up to 5
      * times) until the out-of-balance force falls below `residual_norm`,
      * its norm before the correction; keeps 1/32 of it if none does.
+     * Each trial is a full assembly (with the tangent unless modified
+     * Newton), so the system at the iterate kept is assembled already:
+     * returns whether it is (false if the last trial inverted a point).
      */
-    void
+    bool
     search_along_correction(const double load_factor,
                             const double residual_norm);
 
