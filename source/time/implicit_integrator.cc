@@ -66,8 +66,10 @@ namespace mpm
                       "direct: sparse LU (KLU through Trilinos Amesos), for "
                       "small problems. MUMPS: the multifrontal sparse LU of "
                       "MUMPS (Amesos), faster on the wider patterns of the "
-                      "meshfree methods (1.5 times on the column collapse "
-                      "with GMM-LME). CG-AMG: conjugate gradients with "
+                      "meshfree methods (6 times on the column collapse "
+                      "with GMM-LME, h = 0.05) and on large MPM grids (1.9 "
+                      "times at h = 0.025); as fast on small MPM grids. "
+                      "CG-AMG: conjugate gradients with "
                       "Trilinos ML algebraic multigrid, for large problems "
                       "with a symmetric tangent (not for non-associated "
                       "plasticity).");
