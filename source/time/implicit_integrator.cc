@@ -48,8 +48,9 @@ namespace mpm
                       "up to 5 times, until the out-of-balance force falls. "
                       "For plastic runs in which points switch between the "
                       "planes, edges and apex of Mohr-Coulomb and full "
-                      "Newton cycles. Costs one more force assembly per "
-                      "iteration.");
+                      "Newton cycles. Each halving costs one more "
+                      "assembly; the trial kept is the next iterate and is "
+                      "not assembled again.");
     prm.declare_entry(
       "Integration", "full cells by cell volume",
       Patterns::Selection("material points|full cells by cell volume"),
@@ -67,8 +68,9 @@ namespace mpm
                       "small problems. MUMPS: the multifrontal sparse LU of "
                       "MUMPS (Amesos), faster on the wider patterns of the "
                       "meshfree methods (6 times on the column collapse "
-                      "with GMM-LME, h = 0.05) and on large MPM grids (1.9 "
-                      "times at h = 0.025); as fast on small MPM grids. "
+                      "with GMM-LME at h = 0.05, with OpenBLAS) and on large "
+                      "MPM grids (1.9 times on the column at h = 0.025, "
+                      "51 200 points); as fast on small MPM grids. "
                       "CG-AMG: conjugate gradients with "
                       "Trilinos ML algebraic multigrid, for large problems "
                       "with a symmetric tangent (not for non-associated "

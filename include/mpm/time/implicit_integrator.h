@@ -272,7 +272,8 @@ namespace mpm
      * its norm before the correction; keeps 1/32 of it if none does.
      * Each trial is a full assembly (with the tangent unless modified
      * Newton), so the system at the iterate kept is assembled already:
-     * returns whether it is (false if the last trial inverted a point).
+     * returns whether it is (false if the last trial failed or its
+     * residual is not finite).
      */
     bool
     search_along_correction(const double load_factor,
