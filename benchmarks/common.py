@@ -91,6 +91,23 @@ def write_results_as(directory, name, rows):
     return path
 
 
+def number_or_text(value):
+    """A value read back from a results file, as the int, float or text it
+    was written from."""
+    try:
+        number = float(value)
+    except ValueError:
+        return value
+    return int(number) if value.lstrip("-").isdigit() else number
+
+
+def read_results(directory, name):
+    """The rows that write_results_as wrote, each value as it was written."""
+    with open(os.path.join(directory, name)) as f:
+        return [{k: number_or_text(v) for k, v in r.items()}
+                for r in csv.DictReader(f)]
+
+
 def print_table(rows):
     keys = list(rows[0].keys())
     widths = [max(len(k), *(len(fmt(r[k])) for r in rows)) for k in keys]
