@@ -46,11 +46,12 @@ class RunFailed(Exception):
     """mpm stopped with an error; the message is its last words."""
 
 
-def run_mpm(prm, settings, directory, ranks=1):
+def run_mpm(prm, settings, directory, ranks=1, restart=False):
     """Run one scene; return (wall seconds, stdout, time series columns).
+    With restart, the run continues from the checkpoint in directory.
 
     The wall time is that of the whole process, measured here."""
-    command = [mpm_executable()]
+    command = [mpm_executable()] + (["--restart"] if restart else [])
     for key, value in settings.items():
         command += ["--set", "%s=%s" % (key, value)]
     command += ["--set", "Output/Directory=%s" % directory, prm]
@@ -128,13 +129,16 @@ def summary(**pairs):
 
 
 def timer_sections(stdout):
-    """Wall seconds per TimerOutput section (max over ranks)."""
+    """Wall seconds per TimerOutput section (max over ranks), summed over
+    the tables in stdout (a run continued from checkpoints prints one per
+    part)."""
     sections = {}
     for line in stdout.splitlines():
         m = re.match(r"\|\s*([A-Za-z0-9 ]+?)\s*\|\s*(\d+)\s*\|\s*([0-9.e+-]+)s"
                      r"\s*\d+\s*\|\s*([0-9.e+-]+)s\s*\|\s*([0-9.e+-]+)s", line)
         if m:
-            sections[m.group(1)] = float(m.group(5))
+            sections[m.group(1)] = sections.get(m.group(1), 0.) + \
+                float(m.group(5))
     return sections
 
 
