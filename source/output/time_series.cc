@@ -3,6 +3,7 @@
 #include <mpm/core/input_error.h>
 #include <mpm/output/time_series.h>
 
+#include <filesystem>
 #include <iomanip>
 #include <limits>
 
@@ -12,8 +13,10 @@ namespace mpm
   TimeSeries<dim>::TimeSeries(const std::string &            filename,
                               const std::vector<Point<dim>> &tracked_positions,
                               const Tensor<1, dim> &         gravity,
-                              const MaterialPoints<dim> &    points)
-    : gravity(gravity)
+                              const MaterialPoints<dim> &    points,
+                              const bool                     continued)
+    : filename(filename)
+    , gravity(gravity)
     , communicator(points.get_communicator())
   {
     // The tracked point is the nearest one; ties go to the smaller id.
@@ -35,6 +38,8 @@ namespace mpm
         tracked_ids.push_back(id);
       }
 
+    if (continued)
+      return;
     const bool is_root = Utilities::MPI::this_mpi_process(communicator) == 0;
     if (is_root)
       file.open(filename);
@@ -64,6 +69,31 @@ namespace mpm
         file << '\n';
         file << std::setprecision(12);
       }
+  }
+
+
+
+  template <int dim>
+  void
+  TimeSeries<dim>::continue_file(const std::uint64_t length)
+  {
+    const bool is_root = Utilities::MPI::this_mpi_process(communicator) == 0;
+    bool       ok      = true;
+    if (is_root)
+      {
+        std::error_code error;
+        const auto      size = std::filesystem::file_size(filename, error);
+        if (!error && size >= length)
+          std::filesystem::resize_file(filename, length, error);
+        if (!error && size >= length)
+          file.open(filename, std::ios::app);
+        file << std::setprecision(12);
+        ok = file.is_open() && file.good();
+      }
+    if (Utilities::MPI::logical_or(!ok, communicator))
+      throw InputError("--restart: the time series '" + filename +
+                       "' is missing, shorter than at the checkpoint, or "
+                       "cannot be written.");
   }
 
 

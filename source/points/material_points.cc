@@ -1,5 +1,10 @@
 #include <deal.II/base/mpi.h>
 
+#include <boost/archive/binary_iarchive.hpp>
+#include <boost/archive/binary_oarchive.hpp>
+#include <boost/serialization/array.hpp>
+#include <boost/serialization/vector.hpp>
+
 #include <mpm/core/input_error.h>
 #include <mpm/core/shared_position.h>
 #include <mpm/points/material_points.h>
@@ -304,8 +309,85 @@ namespace mpm
 
 
 
+  template <int dim>
+  template <class Archive>
+  void
+  MaterialPoints<dim>::save(Archive &archive, const unsigned int) const
+  {
+    const std::uint64_t n_points =
+      particle_handler.n_locally_owned_particles();
+    const unsigned int n_properties =
+      particle_handler.n_properties_per_particle();
+    archive << n_points << n_properties;
+    std::vector<double> properties(n_properties);
+    for (auto particle = particle_handler.begin();
+         particle != particle_handler.end();
+         ++particle)
+      {
+        const auto cell = particle->get_surrounding_cell()
+                            ->id()
+                            .template to_binary<dim>();
+        const types::particle_index   id = particle->get_id();
+        const Point<dim>              x  = particle->get_location();
+        const Point<dim>              X = particle->get_reference_location();
+        const ArrayView<const double> p  = particle->get_properties();
+        std::copy(p.begin(), p.end(), properties.begin());
+        archive << cell << id << x << X << properties;
+      }
+  }
+
+
+
+  template <int dim>
+  template <class Archive>
+  void
+  MaterialPoints<dim>::load(Archive &archive, const unsigned int)
+  {
+    std::uint64_t n_points     = 0;
+    unsigned int  n_properties = 0;
+    archive >> n_points >> n_properties;
+    if (n_properties != particle_handler.n_properties_per_particle())
+      throw InputError("--restart: the checkpoint's points carry " +
+                       std::to_string(n_properties) +
+                       " values each, this scene's " +
+                       std::to_string(
+                         particle_handler.n_properties_per_particle()) +
+                       ": the materials or the scheme have changed.");
+    particle_handler.clear_particles();
+    CellId::binary_type               cell;
+    types::particle_index             id;
+    Point<dim>                        x, X;
+    std::vector<double>               properties;
+    for (std::uint64_t i = 0; i < n_points; ++i)
+      {
+        archive >> cell >> id >> x >> X >> properties;
+        particle_handler.insert_particle(
+          x,
+          X,
+          id,
+          triangulation.create_cell_iterator(CellId(cell)),
+          ArrayView<const double>(properties.data(), properties.size()));
+      }
+    particle_handler.update_cached_numbers();
+  }
+
+
+
   template struct PointLayout<2>;
   template struct PointLayout<3>;
   template class MaterialPoints<2>;
   template class MaterialPoints<3>;
+
+  template void
+  MaterialPoints<2>::save(boost::archive::binary_oarchive &,
+                          const unsigned int) const;
+  template void
+  MaterialPoints<3>::save(boost::archive::binary_oarchive &,
+                          const unsigned int) const;
+  template void
+  MaterialPoints<2>::load(boost::archive::binary_iarchive &,
+                          const unsigned int);
+  template void
+  MaterialPoints<3>::load(boost::archive::binary_iarchive &,
+                          const unsigned int);
 } // namespace mpm

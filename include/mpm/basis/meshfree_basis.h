@@ -119,6 +119,14 @@ namespace mpm
       return counts;
     }
 
+    /** The counts, for Checkpoint: a continued run reports the whole run. */
+    template <class Archive>
+    void
+    serialize(Archive &archive, const unsigned int)
+    {
+      archive &counts.evaluations &counts.radius_growths &counts.retries;
+    }
+
     /** Locality of LME: values below this are cut from the support. */
     static constexpr double lme_cutoff = 1e-6;
 

@@ -4,6 +4,8 @@
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
+#include <boost/serialization/vector.hpp>
+
 #include <mpm/basis/grid_basis.h>
 #include <mpm/boundary/dirichlet_conditions.h>
 #include <mpm/points/material_points.h>
@@ -91,6 +93,19 @@ namespace mpm
     is_held_by(const unsigned int i, const unsigned int w) const
     {
       return (engaged_walls[i] >> w) & 1u;
+    }
+
+    /**
+     * The state that moves with the run, for Checkpoint. The walls and the
+     * nodes' conditions come from the scene and the starting grid, which a
+     * restarted run builds again in the same order.
+     */
+    template <class Archive>
+    void
+    serialize(Archive &archive, const unsigned int)
+    {
+      archive &positions &velocities &accelerations &engaged_walls
+        &has_history;
     }
 
   private:

@@ -3,6 +3,9 @@
 
 #include <deal.II/base/point.h>
 
+#include <boost/serialization/split_member.hpp>
+#include <boost/serialization/vector.hpp>
+
 #include <mpm/points/material_points.h>
 
 #include <fstream>
@@ -44,10 +47,16 @@ namespace mpm
   class TimeSeries
   {
   public:
+    /**
+     * `continued`: the run continues from a checkpoint, whose load() opens
+     * the file where the checkpoint left it; otherwise the file is written
+     * anew, header first.
+     */
     TimeSeries(const std::string &             filename,
                const std::vector<Point<dim>> &tracked_positions,
                const Tensor<1, dim> &          gravity,
-               const MaterialPoints<dim> &     points);
+               const MaterialPoints<dim> &     points,
+               const bool                      continued);
 
     /** Compute the diagnostics and write a row (rank 0 writes). */
     Diagnostics<dim>
@@ -56,12 +65,58 @@ namespace mpm
               const double               dt,
               const MaterialPoints<dim> &points);
 
+    /**
+     * For Checkpoint: the tracked points and the length of the file. A
+     * continued run cuts the rows that the stopped run wrote after the
+     * checkpoint, and appends.
+     */
+    template <class Archive>
+    void
+    save(Archive &archive, const unsigned int) const;
+
+    template <class Archive>
+    void
+    load(Archive &archive, const unsigned int);
+
+    BOOST_SERIALIZATION_SPLIT_MEMBER()
+
   private:
+    /** Rank 0: cut the file to `length` bytes and open it to append. */
+    void
+    continue_file(const std::uint64_t length);
+
+    const std::string                             filename;
     const Tensor<1, dim>                          gravity;
     const MPI_Comm                                communicator;
-    std::ofstream                                 file;
+    // mutable: save() asks it for its length, and tellp() is not const.
+    mutable std::ofstream                         file;
     std::vector<types::particle_index>            tracked_ids;
   };
+
+
+
+  template <int dim>
+  template <class Archive>
+  void
+  TimeSeries<dim>::save(Archive &archive, const unsigned int) const
+  {
+    // Only rank 0 writes the file; the others save a length of 0.
+    const std::uint64_t length =
+      file.is_open() ? static_cast<std::uint64_t>(file.tellp()) : 0;
+    archive << tracked_ids << length;
+  }
+
+
+
+  template <int dim>
+  template <class Archive>
+  void
+  TimeSeries<dim>::load(Archive &archive, const unsigned int)
+  {
+    std::uint64_t length = 0;
+    archive >> tracked_ids >> length;
+    continue_file(length);
+  }
 } // namespace mpm
 
 #endif

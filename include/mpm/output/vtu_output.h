@@ -4,6 +4,10 @@
 #include <deal.II/base/data_out_base.h>
 #include <deal.II/fe/mapping.h>
 
+#include <boost/serialization/string.hpp>
+#include <boost/serialization/utility.hpp>
+#include <boost/serialization/vector.hpp>
+
 #include <mpm/assembly/grid_nodes.h>
 #include <mpm/basis/node_cloud.h>
 #include <mpm/points/material_points.h>
@@ -37,6 +41,14 @@ namespace mpm
           const GridNodes<dim> &     nodes,
           const Mapping<dim> &       mapping,
           const NodeCloud<dim> *     cloud = nullptr);
+
+    /** The file counter and the .pvd records, for Checkpoint. */
+    template <class Archive>
+    void
+    serialize(Archive &archive, const unsigned int)
+    {
+      archive &counter &point_records &grid_records &cloud_records;
+    }
 
   private:
     /**

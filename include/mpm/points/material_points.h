@@ -5,6 +5,8 @@
 #include <deal.II/fe/mapping.h>
 #include <deal.II/particles/particle_handler.h>
 
+#include <boost/serialization/split_member.hpp>
+
 #include <mpm/basis/grid_basis.h>
 #include <mpm/bodies/body.h>
 #include <mpm/materials/material.h>
@@ -138,6 +140,22 @@ namespace mpm
     {
       return particle_handler.n_global_particles();
     }
+
+    /**
+     * This rank's points, for Checkpoint: cell, id, position, reference
+     * position and properties, in the handler's order, which load() keeps
+     * (it fixes the order of every sum over points). load() replaces the
+     * points; the grid must be the one they were saved on.
+     */
+    template <class Archive>
+    void
+    save(Archive &archive, const unsigned int) const;
+
+    template <class Archive>
+    void
+    load(Archive &archive, const unsigned int);
+
+    BOOST_SERIALIZATION_SPLIT_MEMBER()
 
   private:
     const parallel::distributed::Triangulation<dim> &triangulation;

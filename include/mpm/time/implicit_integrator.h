@@ -12,6 +12,8 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <boost/serialization/set.hpp>
+
 #include <mpm/basis/grid_basis.h>
 #include <mpm/basis/meshfree_basis.h>
 #include <mpm/basis/node_cloud.h>
@@ -91,6 +93,23 @@ namespace mpm
      */
     void
     step(const double load_factor, const double dt);
+
+    /**
+     * The state carried from step to step, for Checkpoint: the walls'
+     * active set and the meshfree nodes. Everything else is built again
+     * at every step. The contact nodes are numbered on this rank, so a
+     * checkpoint is continued on as many ranks.
+     */
+    template <class Archive>
+    void
+    serialize(Archive &archive, const unsigned int)
+    {
+      archive &engaged_contact_nodes;
+      if (cloud)
+        archive &*cloud;
+      if (meshfree)
+        archive &*meshfree;
+    }
 
   private:
     /**
