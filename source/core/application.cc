@@ -27,6 +27,8 @@ namespace mpm
       "  --set 'Section/entry=value'  Override an entry of the file, e.g.\n"
       "                               --set 'Time stepping/End time=2'.\n"
       "                               Repeatable; applied after the file.\n"
+      "  --restart                    Continue the run from the checkpoint in\n"
+      "                               its output directory (see Checkpoint).\n"
       "  --print-parameters           List every entry with its default and\n"
       "                               documentation, then exit.\n"
       "  --help                       Show this text.\n"
@@ -145,9 +147,11 @@ namespace mpm
     void
     run_scene(ParameterHandler &              prm,
               const std::vector<std::string> &material_names,
-              const std::vector<std::string> &body_names)
+              const std::vector<std::string> &body_names,
+              const bool                      restart)
     {
-      Simulator<dim> simulator(prm, material_names, body_names, MPI_COMM_WORLD);
+      Simulator<dim> simulator(
+        prm, material_names, body_names, MPI_COMM_WORLD, restart);
       try
         {
           simulator.run();
@@ -181,6 +185,7 @@ namespace mpm
     {
       std::vector<Override> overrides;
       std::string           filename;
+      bool                  restart = false;
       for (unsigned int i = 0; i < arguments.size(); ++i)
         {
           const std::string &a = arguments[i];
@@ -196,6 +201,8 @@ namespace mpm
                 print_parameters();
               return 0;
             }
+          else if (a == "--restart")
+            restart = true;
           else if (a == "--set")
             {
               if (i + 1 == arguments.size())
@@ -254,9 +261,9 @@ namespace mpm
       prm.leave_subsection();
 
       if (dim == 2)
-        run_scene<2>(prm, material_names, body_names);
+        run_scene<2>(prm, material_names, body_names, restart);
       else
-        run_scene<3>(prm, material_names, body_names);
+        run_scene<3>(prm, material_names, body_names, restart);
       return 0;
     }
   } // namespace

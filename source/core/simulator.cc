@@ -112,6 +112,7 @@ namespace mpm
                       "Positions, ';'-separated; the material point nearest "
                       "to each at the start is followed in the time series.");
     prm.leave_subsection();
+    Checkpoint::declare_parameters(prm);
 
     prm.enter_subsection("Materials");
     for (const auto &name : material_names)
@@ -138,7 +139,8 @@ namespace mpm
   Simulator<dim>::Simulator(ParameterHandler &              prm,
                             const std::vector<std::string> &material_names,
                             const std::vector<std::string> &body_names,
-                            const MPI_Comm                  communicator)
+                            const MPI_Comm                  communicator,
+                            const bool                      restart)
     : communicator(communicator)
     , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
     // Not bound to the communicator: a run that stops with an error must not
@@ -311,9 +313,31 @@ namespace mpm
                                                   communicator);
     time_series = std::make_unique<TimeSeries<dim>>(
       output_directory + "/" + time_series_file, tracked_positions, gravity,
-      *points);
+      *points, restart);
+    // The quasi-static loads ramp over End time, so it may only be raised
+    // in a dynamic run.
+    std::vector<std::string> entries_that_may_change = {"Output/Directory"};
+    if (!implicit || dynamic_implicit)
+      entries_that_may_change.push_back("Time stepping/End time");
+    checkpoint = std::make_unique<Checkpoint>(prm,
+                                              output_directory,
+                                              entries_that_may_change,
+                                              communicator);
 
-    // A fixed time step must be stable for the initial state.
+    next_output        = output_interval;
+    next_time_series   = time_series_interval;
+    next_implicit_step = dynamic_implicit ? fixed_time_step :
+                                            end_time / n_load_steps;
+    if (restart)
+      {
+        checkpoint->read(
+          [&](boost::archive::binary_iarchive &archive) {
+            serialize(archive, 0);
+          });
+        restarted = true;
+      }
+
+    // A fixed time step must be stable for the state the run starts from.
     if (fixed_time_step > 0. && !implicit)
       {
         const double limit = stability_limit(current_speeds());
@@ -546,6 +570,20 @@ namespace mpm
 
 
   template <int dim>
+  template <class Archive>
+  void
+  Simulator<dim>::serialize(Archive &archive, const unsigned int)
+  {
+    archive &time &step &dt &speeds.point &speeds.signal &next_output
+      &next_time_series &next_implicit_step;
+    archive &*points &*vtu_output &*time_series;
+    if (implicit)
+      archive &*implicit;
+  }
+
+
+
+  template <int dim>
   void
   Simulator<dim>::run()
   {
@@ -554,10 +592,13 @@ namespace mpm
           << Utilities::MPI::n_mpi_processes(communicator) << " rank(s)"
           << std::endl;
     wall_clock.restart();
+    if (restarted)
+      pcout << "mpm: continuing from the checkpoint at t = " << time
+            << ", step " << step << std::endl;
+    else
+      speeds = current_speeds();
 
-    Speeds speeds = current_speeds();
-
-    if (dynamic_implicit)
+    if (dynamic_implicit && !restarted)
       {
         // Newmark needs the initial acceleration: M a = f_ext - f_int with
         // the lumped mass, from the same projection the explicit scheme
@@ -574,33 +615,35 @@ namespace mpm
                 a[d];
           });
       }
-    {
-      TimerOutput::Scope t(timer, "output");
-      // The nodal values are written as they were last projected; project
-      // once so the first snapshot shows the initial grid state.
-      transfer->project_mass_momentum(false);
-      transfer->compute_nodal_velocity();
-      diagnostics = time_series->write_row(time, step, 0., *points);
-      if (write_paraview)
-        vtu_output->write(time,
-                              *points,
-                              nodes,
-                              *mapping,
-                              implicit ? implicit->node_cloud() : nullptr);
-    }
-    double next_output      = output_interval;
-    double next_time_series = time_series_interval;
-
+    if (!restarted)
+      {
+        TimerOutput::Scope t(timer, "output");
+        // The nodal values are written as they were last projected; project
+        // once so the first snapshot shows the initial grid state.
+        transfer->project_mass_momentum(false);
+        transfer->compute_nodal_velocity();
+        diagnostics = time_series->write_row(time, step, 0., *points);
+        if (write_paraview)
+          vtu_output->write(time,
+                            *points,
+                            nodes,
+                            *mapping,
+                            implicit ? implicit->node_cloud() : nullptr);
+      }
     const double time_tolerance = end_time_tolerance();
     const double implicit_step_size =
       dynamic_implicit ? fixed_time_step : end_time / n_load_steps;
-    // After a cut, the step grows back by doubling, one success at a time.
-    double next_implicit_step = implicit_step_size;
+    // Only a step that overshoots End time is shortened: one that ends
+    // within round-off of it keeps its size, so that a run which stops
+    // there takes the same steps as one that goes on (a run continued from
+    // its checkpoint repeats the uninterrupted run to the last bit).
     while (time < end_time - time_tolerance)
       {
         if (implicit)
           {
-            dt = std::min(next_implicit_step, end_time - time);
+            dt = next_implicit_step;
+            if (time + dt > end_time + time_tolerance)
+              dt = end_time - time;
             implicit_step();
             next_implicit_step = std::min(implicit_step_size, 2. * dt);
           }
@@ -608,7 +651,7 @@ namespace mpm
           {
             dt = (fixed_time_step > 0. ? fixed_time_step :
                                          stable_time_step(speeds));
-            if (time + dt > end_time - time_tolerance)
+            if (time + dt > end_time + time_tolerance)
               dt = end_time - time;
             speeds = explicit_step();
           }
@@ -651,6 +694,22 @@ namespace mpm
               next_output += output_interval;
           }
         report_progress(at_end);
+        const double wall = wall_clock.wall_time();
+        if (checkpoint->enabled() && (at_end || checkpoint->due(wall)))
+          {
+            TimerOutput::Scope t(timer, "checkpoint");
+            checkpoint->write(wall,
+                              [&](boost::archive::binary_oarchive &archive) {
+                                serialize(archive, 0);
+                              });
+            if (!at_end && checkpoint->stop_due(wall))
+              {
+                pcout << "mpm: stopped at t = " << time << " after "
+                      << wall / 60. << " min (Checkpoint/Stop after); "
+                      << "continue with --restart." << std::endl;
+                break;
+              }
+          }
       }
 
     const double wall = wall_clock.wall_time();

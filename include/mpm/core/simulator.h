@@ -13,6 +13,7 @@
 #include <mpm/bodies/body.h>
 #include <mpm/boundary/dirichlet_conditions.h>
 #include <mpm/boundary/point_loads.h>
+#include <mpm/core/checkpoint.h>
 #include <mpm/grid/background_grid.h>
 #include <mpm/materials/material.h>
 #include <mpm/output/time_series.h>
@@ -47,11 +48,15 @@ namespace mpm
                        const std::vector<std::string> &material_names,
                        const std::vector<std::string> &body_names);
 
-    /** Parse the scene and set everything up; bad input throws InputError. */
+    /**
+     * Parse the scene and set everything up; bad input throws InputError.
+     * `restart`: continue from the checkpoint in the output directory.
+     */
     Simulator(ParameterHandler &              prm,
               const std::vector<std::string> &material_names,
               const std::vector<std::string> &body_names,
-              const MPI_Comm                  communicator);
+              const MPI_Comm                  communicator,
+              const bool                      restart = false);
 
     /** Run to the end time. A run that cannot go on throws RunError. */
     void
@@ -71,6 +76,15 @@ namespace mpm
     }
 
   private:
+    /**
+     * The state of the run, for Checkpoint: the loop's schedule here, and
+     * each part's own state from the part. What the scene fixes is checked
+     * on loading, so that a changed scene is refused, not misread.
+     */
+    template <class Archive>
+    void
+    serialize(Archive &archive, const unsigned int);
+
     /** The largest point speed and signal speed (Material::signal_speed). */
     struct Speeds
     {
@@ -149,6 +163,8 @@ namespace mpm
     bool                                      dynamic_implicit = false;
     std::unique_ptr<VtuOutput<dim>>           vtu_output;
     std::unique_ptr<TimeSeries<dim>>          time_series;
+    std::unique_ptr<Checkpoint>               checkpoint;
+    bool                                      restarted = false;
 
     Tensor<1, dim> gravity;
     double         end_time;
@@ -166,6 +182,11 @@ namespace mpm
     double           time     = 0.;
     unsigned int     step     = 0;
     double           dt       = 0.;
+    Speeds           speeds;
+    double           next_output      = 0.;
+    double           next_time_series = 0.;
+    /** After a cut, the implicit step grows back by doubling. */
+    double           next_implicit_step = 0.;
     Diagnostics<dim> diagnostics;
     Timer            wall_clock;
     double           last_progress_wall = 0.;

@@ -1,0 +1,114 @@
+#ifndef mpm_core_checkpoint_h
+#define mpm_core_checkpoint_h
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <boost/archive/binary_iarchive.hpp>
+#include <boost/archive/binary_oarchive.hpp>
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace mpm
+{
+  using namespace dealii;
+
+  /**
+   * Where and when a run saves its state, so that it can be continued
+   * (`mpm --restart scene.prm`) after a machine's time limit, a crash, or
+   * with a later End time. Each rank writes its own archive into
+   * `<Output/Directory>/checkpoint.new/`, which then replaces
+   * `checkpoint/` in one rename: a run killed while writing keeps the
+   * previous checkpoint. The parts of the state are written by the classes
+   * that own them (their serialize() functions); a run continued on the
+   * same number of ranks repeats the uninterrupted run to the last bit.
+   */
+  class Checkpoint
+  {
+  public:
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    /**
+     * `entries_that_may_change` ('Section/entry'), besides the Checkpoint
+     * entries, may differ between the run that wrote a checkpoint and the
+     * one that continues it; any other entry of the scene must not.
+     */
+    Checkpoint(ParameterHandler &              prm,
+               const std::string &             output_directory,
+               const std::vector<std::string> &entries_that_may_change,
+               const MPI_Comm                  communicator);
+
+    /** Whether this run writes checkpoints at all. */
+    bool
+    enabled() const
+    {
+      return interval_seconds > 0.;
+    }
+
+    /**
+     * Whether the wall-time interval has passed since the last checkpoint
+     * (or the start): decided on rank 0, so that all ranks agree.
+     */
+    bool
+    due(const double wall_seconds) const;
+
+    /**
+     * Whether the run should end now, after its checkpoint (Stop after):
+     * decided on rank 0.
+     */
+    bool
+    stop_due(const double wall_seconds) const;
+
+    /** Write this rank's state with `save`, then swap the directories. */
+    void
+    write(const double                                              wall_seconds,
+          const std::function<void(boost::archive::binary_oarchive &)> &save);
+
+    /**
+     * Read this rank's state with `load`. Throws InputError if there is no
+     * checkpoint, or it is damaged, or was written by another version, by
+     * another number of ranks, or for a scene with other entries.
+     */
+    void
+    read(const std::function<void(boost::archive::binary_iarchive &)> &load)
+      const;
+
+    /** The checkpoint directory, for messages. */
+    const std::string &
+    directory() const
+    {
+      return checkpoint_directory;
+    }
+
+  private:
+    std::string rank_file(const std::string &directory) const;
+
+    /** Every entry of the scene as 'Section/entry' -> value. */
+    static std::map<std::string, std::string>
+    scene_entries(const ParameterHandler &prm);
+
+    bool
+    may_change(const std::string &entry) const;
+
+    std::string
+    may_change_list() const;
+
+    static std::uint32_t
+    checksum(const std::string &bytes);
+
+    const MPI_Comm                           communicator;
+    const std::string                        checkpoint_directory;
+    const std::map<std::string, std::string> scene;
+    const std::vector<std::string>           entries_that_may_change;
+    double            interval_seconds;
+    double            stop_seconds;
+    double            last_write = 0.;
+  };
+} // namespace mpm
+
+#endif
