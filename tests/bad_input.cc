@@ -7,6 +7,7 @@
 
 #include <mpm/core/application.h>
 
+#include <filesystem>
 #include <iostream>
 #include <sstream>
 
@@ -184,6 +185,38 @@ main(int argc, char **argv)
            with({"Materials/Names=rubber, fill",
                  "Materials/rubber/Model=Mohr-Coulomb",
                  "Materials/fill/Model=Wieckowski granular"}));
+  run_case("Stop after without checkpoints",
+           with({"Checkpoint/Stop after=60"}));
+  {
+    // A run that leaves a checkpoint (at its end), to continue wrongly.
+    const std::vector<std::string> checkpointed = {
+      "Output/Directory=output-checkpointed",
+      "Checkpoint/Wall time interval=1e-9"};
+    auto restart = [&](const std::vector<std::string> &settings) {
+      std::vector<std::string> all = checkpointed;
+      all.insert(all.end(), settings.begin(), settings.end());
+      auto arguments = with(all);
+      arguments.insert(arguments.begin(), "--restart");
+      return arguments;
+    };
+    run_case("--restart without a checkpoint",
+             restart({"Output/Directory=output-never-checkpointed"}));
+    mpm::run_command_line(with(checkpointed));
+    run_case("--restart of a scene whose material changed",
+             restart({"Materials/rubber/Young's modulus=2e5",
+                      "Output/Write grid=true"}));
+    run_case("--restart of a checkpoint of another scheme",
+             restart({"Time stepping/Scheme=quasi-static"}));
+    const std::string quasi_static = "Time stepping/Scheme=quasi-static";
+    mpm::run_command_line(with({quasi_static, checkpointed[0], checkpointed[1]}));
+    run_case("--restart of a quasi-static run with another End time",
+             restart({quasi_static, "Time stepping/End time=2"}));
+    if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+      std::filesystem::resize_file("output-checkpointed/checkpoint/rank-0.bin",
+                                   100);
+    MPI_Barrier(MPI_COMM_WORLD);
+    run_case("--restart of a cut checkpoint file", restart({quasi_static}));
+  }
   // Stable for the loose fill at the start (limit 1.82e-4 s), not once the
   // bottom has compacted and stiffened.
   run_case("fixed time step the compacting fill outgrows",

@@ -1,0 +1,193 @@
+// A run stopped after a checkpoint and continued with --restart repeats the
+// uninterrupted run to the last bit: its time series and every ParaView file
+// (apart from the line with the date) are byte-identical to those of a run
+// that never stopped. Each scene runs straight, and again in parts: parts
+// with Checkpoint/Stop after near 0 end after exactly one step, and a part
+// may raise End time (not in the quasi-static scheme, whose load ramps over
+// it). The scenes cover the explicit scheme, the quasi-static scheme,
+// Newmark with walls, and (on one rank) the meshfree methods with their
+// node cloud. Bad input for checkpoints is in bad_input.cc.
+
+#include <deal.II/base/mpi.h>
+
+#include <mpm/core/application.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "tests.h"
+
+using namespace dealii;
+
+namespace
+{
+  const std::vector<std::string> stop_after_one_step = {
+    "Checkpoint/Wall time interval=1e-9",
+    "Checkpoint/Stop after=1e-9"};
+  const std::vector<std::string> to_the_end = {
+    "Checkpoint/Wall time interval=1e-9"};
+
+  int
+  run(const std::string &             scene,
+      const std::string &             directory,
+      const std::vector<std::string> &settings,
+      const bool                      restart)
+  {
+    std::vector<std::string> arguments = {"--set",
+                                          "Output/Directory=" + directory};
+    if (restart)
+      arguments.push_back("--restart");
+    for (const auto &s : settings)
+      {
+        arguments.push_back("--set");
+        arguments.push_back(s);
+      }
+    arguments.push_back(scene);
+    const int code = mpm::run_command_line(arguments);
+    MPI_Barrier(MPI_COMM_WORLD);
+    return code;
+  }
+
+  /** A file's text without deal.II's line with the date of writing. */
+  std::string
+  contents(const std::filesystem::path &file)
+  {
+    std::ifstream      in(file);
+    std::ostringstream text;
+    for (std::string line; std::getline(in, line);)
+      if (line.rfind("#This file was generated", 0) != 0)
+        text << line << '\n';
+    return text.str();
+  }
+
+  /**
+   * Number of output files of `straight` that `parts` has with the same
+   * text, and whether the two directories hold the same output files.
+   */
+  std::pair<unsigned int, bool>
+  identical_files(const std::string &straight, const std::string &parts)
+  {
+    unsigned int n_identical = 0, n_files = 0;
+    for (const auto &entry : std::filesystem::directory_iterator(straight))
+      {
+        const auto other = std::filesystem::path(parts) / entry.path().filename();
+        ++n_files;
+        if (std::filesystem::exists(other) &&
+            contents(entry.path()) == contents(other))
+          ++n_identical;
+      }
+    unsigned int n_other = 0;
+    for (const auto &entry : std::filesystem::directory_iterator(parts))
+      if (entry.path().filename() != "checkpoint")
+        ++n_other;
+    return {n_identical, n_identical == n_files && n_other == n_files};
+  }
+
+  /**
+   * Run `scene` with `settings` straight, then in the given parts: the
+   * first starts afresh, the others continue with --restart, each with its
+   * own settings added.
+   */
+  void
+  compare(const std::string &                           title,
+          const std::string &                           scene,
+          const std::vector<std::string> &              settings,
+          const std::vector<std::vector<std::string>> &parts)
+  {
+    const std::string name =
+      "output-" + title.substr(0, title.find(',')) + "-";
+    if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+      {
+        std::filesystem::remove_all(name + "straight");
+        std::filesystem::remove_all(name + "parts");
+      }
+    MPI_Barrier(MPI_COMM_WORLD);
+    deallog << "--- " << title << std::endl;
+    mpm_tests::check("straight run exits with 0",
+                     run(scene, name + "straight", settings, false) == 0);
+
+    double previous_step = 0.;
+    for (unsigned int k = 0; k < parts.size(); ++k)
+      {
+        std::vector<std::string> part_settings = settings;
+        part_settings.insert(part_settings.end(),
+                             parts[k].begin(),
+                             parts[k].end());
+        const int code = run(scene, name + "parts", part_settings, k > 0);
+        const double step =
+          mpm_tests::read_csv(name + "parts/time_series.csv")["step"].back();
+        if (parts[k] == stop_after_one_step)
+          mpm_tests::check("part " + std::to_string(k + 1) +
+                             " stops after one more step, exit 0",
+                           code == 0 && step == previous_step + 1.);
+        else
+          mpm_tests::check("part " + std::to_string(k + 1) + " exits with 0",
+                           code == 0);
+        previous_step = step;
+      }
+
+    if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+      {
+        const auto [n_identical, same_set] =
+          identical_files(name + "straight", name + "parts");
+        mpm_tests::check("time series identical",
+                         contents(name + "straight/time_series.csv") ==
+                           contents(name + "parts/time_series.csv"));
+        mpm_tests::check("every output file identical",
+                         same_set && n_identical > 2);
+      }
+  }
+} // namespace
+
+
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  mpm_tests::initlog();
+  const bool serial = Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) == 1;
+  const std::string prm = mpm_tests::source_file("../prm/");
+
+  compare("two_disks, explicit",
+          prm + "two_disks.prm",
+          {"Time stepping/End time=0.3", "Output/Interval=0.05"},
+          {stop_after_one_step,
+           stop_after_one_step,
+           stop_after_one_step,
+           to_the_end});
+
+  compare("oedometer, quasi-static",
+          prm + "oedometer.prm",
+          {},
+          {stop_after_one_step,
+           stop_after_one_step,
+           stop_after_one_step,
+           to_the_end});
+
+  // End time is raised in the last part; the first End time is on the
+  // output interval, since a run that ends writes a snapshot there.
+  const std::vector<std::string> disk = {"Time stepping/End time=0.02",
+                                         "Output/Interval=0.004"};
+  compare("rolling_disk_MPM, Newmark with walls, End time raised",
+          prm + "rolling_disk.prm",
+          disk,
+          {stop_after_one_step,
+           {"Time stepping/End time=0.008",
+            "Checkpoint/Wall time interval=1e-9"},
+           to_the_end});
+
+  // The meshfree methods run on one rank.
+  if (serial)
+    for (const std::string method : {"GMM-MLS", "GMM-LME"})
+      {
+        std::vector<std::string> settings = disk;
+        settings.push_back("Method=" + method);
+        settings.push_back("Time stepping/End time=0.01");
+        compare("rolling_disk_" + method + ", Newmark with walls",
+                prm + "rolling_disk.prm",
+                settings,
+                {stop_after_one_step, stop_after_one_step, to_the_end});
+      }
+}
