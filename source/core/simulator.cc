@@ -471,7 +471,9 @@ namespace mpm
     if (Utilities::MPI::this_mpi_process(communicator) != 0)
       return;
     const double wall = wall_clock.wall_time();
-    const double eta  = time > 0. ? wall * (end_time - time) / time : 0.;
+    const double eta  = time > start_time ?
+                          wall * (end_time - time) / (time - start_time) :
+                          0.;
     std::ostringstream line;
     line << "step " << step << "  t = " << std::setprecision(4) << time
          << " / " << end_time << "  dt = " << std::setprecision(3) << dt
@@ -592,6 +594,8 @@ namespace mpm
           << Utilities::MPI::n_mpi_processes(communicator) << " rank(s)"
           << std::endl;
     wall_clock.restart();
+    start_time = time;
+    start_step = step;
     if (restarted)
       pcout << "mpm: continuing from the checkpoint at t = " << time
             << ", step " << step << std::endl;
@@ -717,8 +721,11 @@ namespace mpm
     getrusage(RUSAGE_SELF, &usage);
     const double peak_memory_mb =
       Utilities::MPI::sum(usage.ru_maxrss / 1024., communicator);
-    pcout << "mpm: " << step << " steps, "
-          << static_cast<double>(points->n_global_points()) * step / wall /
+    // A continued run reports the steps it took itself.
+    const unsigned int steps_taken = step - start_step;
+    pcout << "mpm: " << steps_taken << " steps, "
+          << static_cast<double>(points->n_global_points()) * steps_taken /
+               wall /
                Utilities::MPI::n_mpi_processes(communicator)
           << " particle-steps per second per rank, " << wall
           << " s wall time, peak memory " << peak_memory_mb

@@ -190,6 +190,9 @@ namespace mpm
     Diagnostics<dim> diagnostics;
     Timer            wall_clock;
     double           last_progress_wall = 0.;
+    /** Time and step this run started from (those of a checkpoint). */
+    double           start_time = 0.;
+    unsigned int     start_step = 0;
     unsigned int     last_progress_decile = 0;
   };
 } // namespace mpm
