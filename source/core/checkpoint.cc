@@ -29,13 +29,15 @@ namespace mpm
       "Save the whole state of the run every this many minutes of wall time, "
       "and at its end, into <Output/Directory>/checkpoint/, replacing the "
       "previous checkpoint. 0: no checkpoints. Continue a run with "
-      "'mpm --restart scene.prm' on the same number of ranks; End time may be "
-      "raised (not for the quasi-static scheme, whose load ramps over End "
-      "time).");
+      "'mpm --restart scene.prm' on the same number of ranks. Besides these "
+      "entries, only Output/Directory and End time may change (End time not "
+      "for the quasi-static scheme, whose load ramps over it).");
     prm.declare_entry(
       "Stop after", "0", Patterns::Double(0.),
-      "End the run early, after a checkpoint, once this many minutes of wall "
-      "time have passed (0: never): for machines that limit a job's time. "
+      "End the run early, after a checkpoint, once its time loop has run "
+      "this many minutes of wall time (0: never; the setup before the loop, "
+      "usually seconds, is not counted): for machines that limit a job's "
+      "time. "
       "Continue it with 'mpm --restart scene.prm'. Needs Wall time interval "
       "above 0.");
     prm.leave_subsection();
@@ -67,7 +69,7 @@ namespace mpm
   bool
   Checkpoint::due(const double wall_seconds) const
   {
-    const bool due = enabled() && (wall_seconds - last_write >= interval_seconds ||
+    const bool due = enabled() && (wall_seconds - last_write_wall_seconds >= interval_seconds ||
                                    stop_due(wall_seconds));
     return Utilities::MPI::broadcast(communicator, due, 0);
   }
@@ -89,6 +91,20 @@ namespace mpm
     return directory + "/rank-" +
            std::to_string(Utilities::MPI::this_mpi_process(communicator)) +
            ".bin";
+  }
+
+
+
+  void
+  Checkpoint::discard_previous() const
+  {
+    std::error_code error;
+    if (Utilities::MPI::this_mpi_process(communicator) == 0)
+      for (const std::string suffix : {"", ".new", ".old"})
+        std::filesystem::remove_all(checkpoint_directory + suffix, error);
+    if (Utilities::MPI::max(error ? 1 : 0, communicator) != 0)
+      throw InputError("The checkpoint '" + checkpoint_directory +
+                       "' of an earlier run cannot be removed.");
   }
 
 
@@ -141,18 +157,51 @@ namespace mpm
       {
         const std::string old = checkpoint_directory + ".old";
         std::filesystem::remove_all(old, error);
-        if (std::filesystem::exists(checkpoint_directory))
+        if (!error && std::filesystem::exists(checkpoint_directory, error))
           std::filesystem::rename(checkpoint_directory, old, error);
         if (!error)
           std::filesystem::rename(fresh, checkpoint_directory, error);
+        // The new checkpoint is in place; a previous one left behind does
+        // no harm.
+        std::error_code ignored;
         if (!error)
-          std::filesystem::remove_all(old, error);
+          std::filesystem::remove_all(old, ignored);
       }
     if (Utilities::MPI::max(error ? 1 : 0, communicator) != 0)
       throw RunError("Cannot move the checkpoint into '" +
                        checkpoint_directory + "'.",
                      false);
-    last_write = wall_seconds;
+    last_write_wall_seconds = wall_seconds;
+  }
+
+
+
+  Checkpoint::RankFile
+  Checkpoint::read_rank_file(const std::string &directory) const
+  {
+    RankFile      contents;
+    std::ifstream file(rank_file(directory), std::ios::binary);
+    contents.found = static_cast<bool>(file);
+    if (!contents.found)
+      return contents;
+    try
+      {
+        boost::archive::binary_iarchive archive(file);
+        archive >> contents.version;
+        if (contents.version == format_version)
+          {
+            std::uint32_t saved_checksum = 0;
+            archive >> contents.n_ranks >> contents.scene >> contents.state >>
+              saved_checksum;
+            contents.intact = saved_checksum == checksum(contents.state);
+          }
+      }
+    catch (...)
+      {
+        // A cut or overwritten file: not intact, which read() reports on
+        // every rank at once.
+      }
+    return contents;
   }
 
 
@@ -161,46 +210,46 @@ namespace mpm
   Checkpoint::read(
     const std::function<void(boost::archive::binary_iarchive &)> &load) const
   {
-    std::ifstream file(rank_file(checkpoint_directory), std::ios::binary);
-    if (Utilities::MPI::logical_or(!file, communicator))
-      throw InputError("--restart: no checkpoint in '" + checkpoint_directory +
-                       "' for every rank: a run writes one when "
-                       "Checkpoint/Wall time interval is above 0, and it is "
-                       "continued on as many ranks as wrote it.");
-
-    unsigned int                       version = 0, n_ranks = 0;
-    std::map<std::string, std::string> saved_scene;
-    std::string                        state_bytes;
-    std::uint32_t                      saved_checksum = 0;
-    bool                               intact         = false;
-    try
+    // A run killed between the two renames of write() has no checkpoint/,
+    // but a complete checkpoint.new/ or checkpoint.old/.
+    RankFile    contents;
+    std::string directory;
+    for (const std::string suffix : {"", ".new", ".old"})
       {
-        boost::archive::binary_iarchive archive(file);
-        archive >> version;
-        if (version == format_version)
+        contents = read_rank_file(checkpoint_directory + suffix);
+        if (!Utilities::MPI::logical_or(!contents.intact, communicator))
           {
-            archive >> n_ranks >> saved_scene >> state_bytes >>
-              saved_checksum;
-            intact = saved_checksum == checksum(state_bytes);
+            directory = checkpoint_directory + suffix;
+            break;
           }
       }
-    catch (...)
+    if (directory.empty())
       {
-        // A cut or overwritten file: reported below on every rank at once.
+        const RankFile primary = read_rank_file(checkpoint_directory);
+        const std::string where =
+          "--restart: the checkpoint in '" + checkpoint_directory + "' ";
+        if (Utilities::MPI::logical_or(!primary.found, communicator))
+          throw InputError("--restart: no checkpoint in '" +
+                           checkpoint_directory +
+                           "' for every rank: a run writes one when "
+                           "Checkpoint/Wall time interval is above 0, and it "
+                           "is continued on as many ranks as wrote it.");
+        if (Utilities::MPI::logical_or(primary.version != format_version &&
+                                         primary.version != 0,
+                                       communicator))
+          throw InputError(where + "was written by another version of mpm.");
+        throw InputError(where + "is damaged or incomplete.");
       }
+
     const std::string where =
-      "--restart: the checkpoint in '" + checkpoint_directory + "' ";
-    if (Utilities::MPI::logical_or(version != format_version &&
-                                     version != 0,
-                                   communicator))
-      throw InputError(where + "was written by another version of mpm.");
-    if (Utilities::MPI::logical_or(!intact, communicator))
-      throw InputError(where + "is damaged or incomplete.");
-    if (n_ranks != Utilities::MPI::n_mpi_processes(communicator))
-      throw InputError(where + "was written by " + std::to_string(n_ranks) +
+      "--restart: the checkpoint in '" + directory + "' ";
+    if (contents.n_ranks != Utilities::MPI::n_mpi_processes(communicator))
+      throw InputError(where + "was written by " +
+                       std::to_string(contents.n_ranks) +
                        " rank(s); continue it on as many.");
 
-    std::map<std::string, std::string> union_of_entries = saved_scene;
+    const auto &saved_scene      = contents.scene;
+    auto        union_of_entries = saved_scene;
     union_of_entries.insert(scene.begin(), scene.end());
     std::string changed;
     for (const auto &entry : union_of_entries)
@@ -220,7 +269,7 @@ namespace mpm
                        changed + "\nOnly " + may_change_list() +
                        " may change when a run is continued.");
 
-    std::istringstream              state(state_bytes);
+    std::istringstream              state(contents.state);
     boost::archive::binary_iarchive archive(state);
     load(archive);
   }

@@ -326,9 +326,10 @@ namespace mpm
 
     next_output        = output_interval;
     next_time_series   = time_series_interval;
-    next_implicit_step = dynamic_implicit ? fixed_time_step :
-                                            end_time / n_load_steps;
-    if (restart)
+    next_implicit_step = implicit_step_size();
+    if (!restart)
+      checkpoint->discard_previous();
+    else
       {
         checkpoint->read(
           [&](boost::archive::binary_iarchive &archive) {
@@ -460,6 +461,15 @@ namespace mpm
                    "Reduce Time stepping/Time step or CFL number.";
         throw RunError(message.str());
       }
+  }
+
+
+
+  template <int dim>
+  double
+  Simulator<dim>::implicit_step_size() const
+  {
+    return dynamic_implicit ? fixed_time_step : end_time / n_load_steps;
   }
 
 
@@ -598,7 +608,12 @@ namespace mpm
     start_step = step;
     if (restarted)
       pcout << "mpm: continuing from the checkpoint at t = " << time
-            << ", step " << step << std::endl;
+            << ", step " << step << std::endl
+            << (checkpoint->enabled() ?
+                  "" :
+                  "mpm: note: Checkpoint/Wall time interval is 0, so this "
+                  "part writes no checkpoint; a later --restart would go "
+                  "back to the one it started from.\n");
     else
       speeds = current_speeds();
 
@@ -635,8 +650,7 @@ namespace mpm
                             implicit ? implicit->node_cloud() : nullptr);
       }
     const double time_tolerance = end_time_tolerance();
-    const double implicit_step_size =
-      dynamic_implicit ? fixed_time_step : end_time / n_load_steps;
+
     // Only a step that overshoots End time is shortened: one that ends
     // within round-off of it keeps its size, so that a run which stops
     // there takes the same steps as one that goes on (a run continued from
@@ -649,7 +663,7 @@ namespace mpm
             if (time + dt > end_time + time_tolerance)
               dt = end_time - time;
             implicit_step();
-            next_implicit_step = std::min(implicit_step_size, 2. * dt);
+            next_implicit_step = std::min(implicit_step_size(), 2. * dt);
           }
         else
           {

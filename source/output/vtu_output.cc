@@ -109,7 +109,18 @@ namespace mpm
     records.emplace_back(time,
                          data_out.write_vtu_with_pvtu_record(
                            directory, name, counter, communicator, 5));
-    if (Utilities::MPI::this_mpi_process(communicator) == 0)
+    write_series(name, records);
+  }
+
+
+
+  template <int dim>
+  void
+  VtuOutput<dim>::write_series(
+    const std::string &                                name,
+    const std::vector<std::pair<double, std::string>> &records) const
+  {
+    if (Utilities::MPI::this_mpi_process(communicator) == 0 && !records.empty())
       {
         std::ofstream pvd(directory + name + ".pvd");
         DataOutBase::write_pvd_record(pvd, records);

@@ -22,10 +22,12 @@ namespace mpm
    * (`mpm --restart scene.prm`) after a machine's time limit, a crash, or
    * with a later End time. Each rank writes its own archive into
    * `<Output/Directory>/checkpoint.new/`, which then replaces
-   * `checkpoint/` in one rename: a run killed while writing keeps the
-   * previous checkpoint. The parts of the state are written by the classes
-   * that own them (their serialize() functions); a run continued on the
-   * same number of ranks repeats the uninterrupted run to the last bit.
+   * `checkpoint/` by two renames (the old one goes to `checkpoint.old/`
+   * first); read() falls back to those two, so a run killed at any moment
+   * leaves a complete checkpoint. The parts of the state are written by the
+   * classes that own them (their serialize() functions); a stopped run
+   * continued on the same number of ranks repeats the uninterrupted run to
+   * the last bit.
    */
   class Checkpoint
   {
@@ -64,6 +66,14 @@ namespace mpm
     bool
     stop_due(const double wall_seconds) const;
 
+    /**
+     * Remove a checkpoint that an earlier run left in the output
+     * directory: a run that starts afresh there rewrites its output, and
+     * a later --restart must not go back to the earlier run.
+     */
+    void
+    discard_previous() const;
+
     /** Write this rank's state with `save`, then swap the directories. */
     void
     write(const double                                              wall_seconds,
@@ -78,15 +88,23 @@ namespace mpm
     read(const std::function<void(boost::archive::binary_iarchive &)> &load)
       const;
 
-    /** The checkpoint directory, for messages. */
-    const std::string &
-    directory() const
-    {
-      return checkpoint_directory;
-    }
-
   private:
     std::string rank_file(const std::string &directory) const;
+
+    /** What one rank finds in its file of a checkpoint directory. */
+    struct RankFile
+    {
+      bool                               found   = false;
+      unsigned int                       version = 0;
+      unsigned int                       n_ranks = 0;
+      std::map<std::string, std::string> scene;
+      std::string                        state;
+      /** Read whole, of this format, and its checksum matches. */
+      bool intact = false;
+    };
+
+    RankFile
+    read_rank_file(const std::string &directory) const;
 
     /** Every entry of the scene as 'Section/entry' -> value. */
     static std::map<std::string, std::string>
@@ -105,9 +123,9 @@ namespace mpm
     const std::string                        checkpoint_directory;
     const std::map<std::string, std::string> scene;
     const std::vector<std::string>           entries_that_may_change;
-    double            interval_seconds;
-    double            stop_seconds;
-    double            last_write = 0.;
+    double                                   interval_seconds;
+    double                                   stop_seconds;
+    double                                   last_write_wall_seconds = 0.;
   };
 } // namespace mpm
 

@@ -143,6 +143,13 @@ namespace mpm
     void
     implicit_step();
 
+    /**
+     * The size of an implicit step before cuts: the Newmark Time step, or
+     * End time over the number of load steps.
+     */
+    double
+    implicit_step_size() const;
+
     const MPI_Comm     communicator;
     ConditionalOStream pcout;
     TimerOutput        timer;

@@ -42,12 +42,22 @@ namespace mpm
           const Mapping<dim> &       mapping,
           const NodeCloud<dim> *     cloud = nullptr);
 
-    /** The file counter and the .pvd records, for Checkpoint. */
+    /**
+     * The file counter and the .pvd records, for Checkpoint. Loading
+     * rewrites the .pvd files, which then leave out any snapshot written
+     * after the checkpoint.
+     */
     template <class Archive>
     void
     serialize(Archive &archive, const unsigned int)
     {
       archive &counter &point_records &grid_records &cloud_records;
+      if (Archive::is_loading::value)
+        {
+          write_series("points", point_records);
+          write_series("grid", grid_records);
+          write_series("nodes", cloud_records);
+        }
     }
 
   private:
@@ -61,6 +71,12 @@ namespace mpm
                    const std::string &                           name,
                    const double                                  time,
                    std::vector<std::pair<double, std::string>> &records) const;
+
+    /** Rank 0 writes the series `name`.pvd of the records, if any. */
+    void
+    write_series(
+      const std::string &                                name,
+      const std::vector<std::pair<double, std::string>> &records) const;
 
     const std::string directory;
     const bool        write_grid;
