@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <iomanip>
 #include <sstream>
@@ -489,7 +490,13 @@ namespace mpm
          << " / " << end_time << "  dt = " << std::setprecision(3) << dt
          << "  wall " << std::fixed << std::setprecision(1) << wall
          << " s  ETA " << eta << " s";
-    if (isatty(STDOUT_FILENO))
+    // mpirun gives its processes a pseudo-terminal even when its own output
+    // goes to a file (a cluster job's log), so there progress is printed as
+    // lines, which read well in a file.
+    const bool live_line = isatty(STDOUT_FILENO) &&
+                           std::getenv("OMPI_COMM_WORLD_SIZE") == nullptr &&
+                           std::getenv("PMI_SIZE") == nullptr;
+    if (live_line)
       {
         if (force || wall - last_progress_wall > 0.25)
           {
