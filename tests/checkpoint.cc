@@ -8,7 +8,8 @@
 // between the renames that swap a new checkpoint in. The scenes cover the
 // explicit scheme, the quasi-static scheme,
 // Newmark with walls, and (on one rank) the meshfree methods with their
-// node cloud. Bad input for checkpoints is in bad_input.cc.
+// node cloud. A last case continues a run with half its Time step, as after
+// a run that went unstable. Bad input for checkpoints is in bad_input.cc.
 
 #include <deal.II/base/mpi.h>
 
@@ -148,6 +149,38 @@ namespace
                          same_set && n_identical > 2);
       }
   }
+
+  /**
+   * A Newmark run stopped after one step and continued with half the Time
+   * step (as after a run that went unstable): the steps after the restart
+   * have the new size, and the run reaches End time.
+   */
+  void
+  smaller_steps(const std::string &scene)
+  {
+    const std::string directory = "output-smaller-steps";
+    if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+      std::filesystem::remove_all(directory);
+    const std::vector<std::string> settings = {"Time stepping/End time=0.01",
+                                               "Time stepping/Time step=2e-3"};
+    std::vector<std::string> first = settings;
+    first.insert(first.end(),
+                 stop_after_one_step.begin(),
+                 stop_after_one_step.end());
+    std::vector<std::string> second = settings;
+    second.push_back("Time stepping/Time step=1e-3");
+    deallog << "--- rolling disk, Time step halved at the restart" << std::endl;
+    const int first_code  = run(scene, directory, first, false);
+    const int second_code = run(scene, directory, second, true);
+    auto      csv = mpm_tests::read_csv(directory + "/time_series.csv");
+    bool      sizes = csv["dt"].size() == 10;
+    for (unsigned int n = 1; sizes && n < csv["dt"].size(); ++n)
+      sizes = std::abs(csv["dt"][n] - (n == 1 ? 2e-3 : 1e-3)) < 1e-15;
+    mpm_tests::check("both parts exit with 0",
+                     first_code == 0 && second_code == 0);
+    mpm_tests::check("one step of 2e-3 s, then 8 of 1e-3 s to End time",
+                     sizes && std::abs(csv["time"].back() - 0.01) < 1e-12);
+  }
 } // namespace
 
 
@@ -188,6 +221,8 @@ main(int argc, char **argv)
            {"Time stepping/End time=0.008",
             "Checkpoint/Wall time interval=1e-9"},
            to_the_end});
+
+  smaller_steps(prm + "rolling_disk.prm");
 
   // The meshfree methods run on one rank.
   if (serial)

@@ -30,8 +30,10 @@ namespace mpm
       "and at its end, into <Output/Directory>/checkpoint/, replacing the "
       "previous checkpoint. 0: no checkpoints. Continue a run with "
       "'mpm --restart scene.prm' on the same number of ranks. Besides these "
-      "entries, only Output/Directory and End time may change (End time not "
-      "for the quasi-static scheme, whose load ramps over it).");
+      "entries, only Output/Directory and the steps may change: End time, "
+      "Time step and CFL number (explicit), End time and Time step "
+      "(Newmark), Load steps (quasi-static, whose load ramps over End "
+      "time).");
     prm.declare_entry(
       "Stop after", "0", Patterns::Double(0.),
       "End the run early, after a checkpoint, once its time loop has run "

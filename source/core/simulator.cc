@@ -315,11 +315,21 @@ namespace mpm
     time_series = std::make_unique<TimeSeries<dim>>(
       output_directory + "/" + time_series_file, tracked_positions, gravity,
       *points, restart);
-    // The quasi-static loads ramp over End time, so it may only be raised
-    // in a dynamic run.
+    // A continued run may go on further, or with smaller steps (after a
+    // run that went unstable). The quasi-static loads ramp over End time,
+    // so there only the number of load steps may change.
     std::vector<std::string> entries_that_may_change = {"Output/Directory"};
-    if (!implicit || dynamic_implicit)
-      entries_that_may_change.push_back("Time stepping/End time");
+    if (!implicit)
+      entries_that_may_change.insert(entries_that_may_change.end(),
+                                     {"Time stepping/End time",
+                                      "Time stepping/Time step",
+                                      "Time stepping/CFL number"});
+    else if (dynamic_implicit)
+      entries_that_may_change.insert(entries_that_may_change.end(),
+                                     {"Time stepping/End time",
+                                      "Time stepping/Time step"});
+    else
+      entries_that_may_change.push_back("Time stepping/Load steps");
     checkpoint = std::make_unique<Checkpoint>(prm,
                                               output_directory,
                                               entries_that_may_change,
@@ -336,6 +346,8 @@ namespace mpm
           [&](boost::archive::binary_iarchive &archive) {
             serialize(archive, 0);
           });
+        // The step size may have been lowered.
+        next_implicit_step = std::min(next_implicit_step, implicit_step_size());
         restarted = true;
       }
 
