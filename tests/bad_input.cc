@@ -175,6 +175,13 @@ main(int argc, char **argv)
            with({"Boundary conditions/Fixed boundaries=",
                  "Bodies/block/Initial velocity=0; -2",
                  "Time stepping/End time=1"}));
+  run_case("points leave the grid, with checkpoints: the message names the "
+           "last one",
+           with({"Boundary conditions/Fixed boundaries=",
+                 "Bodies/block/Initial velocity=0; -2",
+                 "Time stepping/End time=1",
+                 "Checkpoint/Wall time interval=1e-9",
+                 "Output/Directory=output-left-grid"}));
   run_case("points would skip cells",
            with({"Gravity=0, -1e5", "Boundary conditions/Fixed boundaries=",
                  "Bodies/block/Lower corner=0.25, 0.5",

@@ -156,9 +156,10 @@ namespace mpm
         {
           simulator.run();
         }
-      catch (const RunError &)
+      catch (const RunError &e)
         {
-          throw;
+          throw RunError(e.what() + simulator.restart_hint(),
+                         e.smaller_step_helps);
         }
       catch (const ExceptionBase &e)
         {

@@ -479,6 +479,22 @@ namespace mpm
 
 
   template <int dim>
+  std::string
+  Simulator<dim>::restart_hint() const
+  {
+    if (!(last_checkpoint_time >= 0.))
+      return "";
+    std::ostringstream hint;
+    hint << " The last checkpoint, at t = " << last_checkpoint_time
+         << ", is in '" << checkpoint->directory()
+         << "': continue from it with --restart (with smaller steps if the "
+            "run went unstable).";
+    return hint.str();
+  }
+
+
+
+  template <int dim>
   double
   Simulator<dim>::implicit_step_size() const
   {
@@ -674,6 +690,8 @@ namespace mpm
     // within round-off of it keeps its size, so that a run which stops
     // there takes the same steps as one that goes on (a run continued from
     // its checkpoint repeats the uninterrupted run to the last bit).
+    if (restarted)
+      last_checkpoint_time = time;
     while (time < end_time - time_tolerance)
       {
         if (implicit)
@@ -739,6 +757,7 @@ namespace mpm
                               [&](boost::archive::binary_oarchive &archive) {
                                 serialize(archive, 0);
                               });
+            last_checkpoint_time = time;
             if (!at_end && checkpoint->stop_due(wall))
               {
                 pcout << "mpm: stopped at t = " << time << " after "

@@ -22,6 +22,7 @@
 #include <mpm/time/explicit_integrator.h>
 #include <mpm/time/implicit_integrator.h>
 
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -61,6 +62,13 @@ namespace mpm
     /** Run to the end time. A run that cannot go on throws RunError. */
     void
     run();
+
+    /**
+     * For the message of a run that cannot go on: where its last
+     * checkpoint is and how to continue from it; empty if it has none.
+     */
+    std::string
+    restart_hint() const;
 
     /** The diagnostics of the last time-series row. */
     const Diagnostics<dim> &
@@ -197,6 +205,8 @@ namespace mpm
     Diagnostics<dim> diagnostics;
     Timer            wall_clock;
     double           last_progress_wall = 0.;
+    /** Time of the last checkpoint written or read; NaN if none. */
+    double           last_checkpoint_time = std::numeric_limits<double>::quiet_NaN();
     /** Time and step this run started from (those of a checkpoint). */
     double           start_time = 0.;
     unsigned int     start_step = 0;
