@@ -8,7 +8,7 @@
 // between the renames that swap a new checkpoint in. The scenes cover the
 // explicit scheme, the quasi-static scheme,
 // Newmark with walls, and (on one rank) the meshfree methods with their
-// node cloud. A last case continues a run with half its Time step, as after
+// node cloud. Two last cases continue runs with other step sizes, as after
 // a run that went unstable. Bad input for checkpoints is in bad_input.cc.
 
 #include <deal.II/base/mpi.h>
@@ -151,35 +151,40 @@ namespace
   }
 
   /**
-   * A Newmark run stopped after one step and continued with half the Time
-   * step (as after a run that went unstable): the steps after the restart
-   * have the new size, and the run reaches End time.
+   * A run stopped after one step and continued with another step entry (as
+   * after a run that went unstable): the steps after the restart have the
+   * sizes `expected_steps` lists (the first is the step before the stop),
+   * and the run reaches End time.
    */
   void
-  smaller_steps(const std::string &scene)
+  changed_steps(const std::string &             title,
+                const std::string &             scene,
+                const std::vector<std::string> &settings,
+                const std::string &             changed_entry,
+                const std::vector<double> &     expected_steps)
   {
-    const std::string directory = "output-smaller-steps";
+    const std::string directory = "output-changed-steps";
     if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
       std::filesystem::remove_all(directory);
-    const std::vector<std::string> settings = {"Time stepping/End time=0.01",
-                                               "Time stepping/Time step=2e-3"};
+    MPI_Barrier(MPI_COMM_WORLD);
     std::vector<std::string> first = settings;
     first.insert(first.end(),
                  stop_after_one_step.begin(),
                  stop_after_one_step.end());
     std::vector<std::string> second = settings;
-    second.push_back("Time stepping/Time step=1e-3");
-    deallog << "--- rolling disk, Time step halved at the restart" << std::endl;
+    second.push_back(changed_entry);
+    deallog << "--- " << title << std::endl;
     const int first_code  = run(scene, directory, first, false);
     const int second_code = run(scene, directory, second, true);
     auto      csv = mpm_tests::read_csv(directory + "/time_series.csv");
-    bool      sizes = csv["dt"].size() == 10;
-    for (unsigned int n = 1; sizes && n < csv["dt"].size(); ++n)
-      sizes = std::abs(csv["dt"][n] - (n == 1 ? 2e-3 : 1e-3)) < 1e-15;
+    // The first row is the state at t = 0.
+    bool sizes = csv["dt"].size() == expected_steps.size() + 1;
+    for (unsigned int n = 0; sizes && n < expected_steps.size(); ++n)
+      sizes = std::abs(csv["dt"][n + 1] - expected_steps[n]) <
+              1e-12 * expected_steps[n];
     mpm_tests::check("both parts exit with 0",
                      first_code == 0 && second_code == 0);
-    mpm_tests::check("one step of 2e-3 s, then 8 of 1e-3 s to End time",
-                     sizes && std::abs(csv["time"].back() - 0.01) < 1e-12);
+    mpm_tests::check("the steps have the expected sizes", sizes);
   }
 } // namespace
 
@@ -222,7 +227,20 @@ main(int argc, char **argv)
             "Checkpoint/Wall time interval=1e-9"},
            to_the_end});
 
-  smaller_steps(prm + "rolling_disk.prm");
+  // rolling_disk.prm steps by 2e-3 s to 0.01 s: after one step, halving
+  // applies at once.
+  changed_steps("rolling disk, Newmark, Time step halved at the restart",
+                prm + "rolling_disk.prm",
+                {"Time stepping/End time=0.01"},
+                "Time stepping/Time step=1e-3",
+                {2e-3, 1e-3, 1e-3, 1e-3, 1e-3, 1e-3, 1e-3, 1e-3, 1e-3});
+  // oedometer.prm: 10 load steps over End time 1. With 5, the step of 0.1
+  // grows by doubling to 0.2.
+  changed_steps("oedometer, quasi-static, Load steps halved at the restart",
+                prm + "oedometer.prm",
+                {},
+                "Time stepping/Load steps=5",
+                {0.1, 0.1, 0.2, 0.2, 0.2, 0.2});
 
   // The meshfree methods run on one rank.
   if (serial)

@@ -148,6 +148,12 @@ namespace mpm
     // wait for the other ranks in the destructor. run() prints the
     // statistics over all ranks.
     , timer(pcout, TimerOutput::never, TimerOutput::wall_times)
+    // mpirun gives its processes a pseudo-terminal even when its own output
+    // goes to a file (a cluster job's log), so there progress is printed as
+    // lines, which read well in a file.
+    , progress_in_place(isatty(STDOUT_FILENO) &&
+                        std::getenv("OMPI_COMM_WORLD_SIZE") == nullptr &&
+                        std::getenv("PMI_SIZE") == nullptr)
     , triangulation(communicator)
     , nodes(triangulation)
   {
@@ -482,13 +488,12 @@ namespace mpm
   std::string
   Simulator<dim>::restart_hint() const
   {
-    if (!(last_checkpoint_time >= 0.))
+    if (std::isnan(last_checkpoint_time))
       return "";
     std::ostringstream hint;
-    hint << " The last checkpoint, at t = " << last_checkpoint_time
-         << ", is in '" << checkpoint->directory()
-         << "': continue from it with --restart (with smaller steps if the "
-            "run went unstable).";
+    hint << " The last checkpoint was saved at t = " << last_checkpoint_time
+         << ": mpm --restart continues from it, with other step entries if "
+            "they are what failed.";
     return hint.str();
   }
 
@@ -518,13 +523,7 @@ namespace mpm
          << " / " << end_time << "  dt = " << std::setprecision(3) << dt
          << "  wall " << std::fixed << std::setprecision(1) << wall
          << " s  ETA " << eta << " s";
-    // mpirun gives its processes a pseudo-terminal even when its own output
-    // goes to a file (a cluster job's log), so there progress is printed as
-    // lines, which read well in a file.
-    const bool live_line = isatty(STDOUT_FILENO) &&
-                           std::getenv("OMPI_COMM_WORLD_SIZE") == nullptr &&
-                           std::getenv("PMI_SIZE") == nullptr;
-    if (live_line)
+    if (progress_in_place)
       {
         if (force || wall - last_progress_wall > 0.25)
           {
@@ -642,6 +641,8 @@ namespace mpm
     start_time = time;
     start_step = step;
     if (restarted)
+      last_checkpoint_time = time;
+    if (restarted)
       pcout << "mpm: continuing from the checkpoint at t = " << time
             << ", step " << step << std::endl
             << (checkpoint->enabled() ?
@@ -690,8 +691,6 @@ namespace mpm
     // within round-off of it keeps its size, so that a run which stops
     // there takes the same steps as one that goes on (a run continued from
     // its checkpoint repeats the uninterrupted run to the last bit).
-    if (restarted)
-      last_checkpoint_time = time;
     while (time < end_time - time_tolerance)
       {
         if (implicit)

@@ -74,13 +74,6 @@ namespace mpm
     void
     discard_previous() const;
 
-    /** The checkpoint directory, for messages. */
-    const std::string &
-    directory() const
-    {
-      return checkpoint_directory;
-    }
-
     /** Write this rank's state with `save`, then swap the directories. */
     void
     write(const double                                              wall_seconds,

@@ -161,6 +161,8 @@ namespace mpm
     const MPI_Comm     communicator;
     ConditionalOStream pcout;
     TimerOutput        timer;
+    /** Progress rewrites one line on a terminal; else a line per 10 %. */
+    const bool         progress_in_place;
 
     parallel::distributed::Triangulation<dim> triangulation;
     std::unique_ptr<Mapping<dim>>             mapping;
@@ -206,7 +208,7 @@ namespace mpm
     Timer            wall_clock;
     double           last_progress_wall = 0.;
     /** Time of the last checkpoint written or read; NaN if none. */
-    double           last_checkpoint_time = std::numeric_limits<double>::quiet_NaN();
+    double last_checkpoint_time = std::numeric_limits<double>::quiet_NaN();
     /** Time and step this run started from (those of a checkpoint). */
     double           start_time = 0.;
     unsigned int     start_step = 0;
