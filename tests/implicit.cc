@@ -223,6 +223,18 @@ main(int argc, char **argv)
     mpm_tests::check("cantilever h = 0.5, nonlinear with the line search: "
                      "the same tip to 1e-12",
                      std::abs(tip(csv) - nonlinear) < 1e-12 * nonlinear);
+
+    // Modified Newton keeps the first tangent of each load step (and its
+    // factorisation): it converges linearly to the same equilibrium, given
+    // the iterations to get there in the same five load steps.
+    csv = mpm_tests::run_scene(cantilever,
+                               "cantilever-modified-newton",
+                               {"Newton/Variant=modified",
+                                "Newton/Maximum iterations=200"});
+    mpm_tests::check("cantilever h = 0.5, modified Newton: the same load "
+                     "steps and the same tip to 1e-8",
+                     csv["step"].back() == 5 &&
+                       std::abs(tip(csv) - nonlinear) < 1e-8 * nonlinear);
   }
 
   // Rolling disk, coarse, 0.2 s.

@@ -39,7 +39,9 @@ namespace mpm
                       Patterns::Selection("full|modified|linear"),
                       "full: a new tangent every iteration (quadratic "
                       "convergence). modified: the tangent of the step's "
-                      "first iteration throughout, as in Beuth et al. "
+                      "first iteration throughout, as in Beuth et al., "
+                      "factorised once by the direct solvers (linear "
+                      "convergence, cheap iterations). "
                       "linear: one iteration per load step, accepted as it "
                       "is; with one load step this is the small-strain "
                       "linear solution.");
@@ -226,6 +228,7 @@ namespace mpm
   ImplicitIntegrator<dim>::reinit_linear_system(DynamicSparsityPattern &dsp)
   {
     const MPI_Comm comm = points.get_communicator();
+    factorization.reset();
     tangent.reinit(owned_dofs, owned_dofs, dsp, comm);
     residual.reinit(owned_dofs, comm);
     correction.reinit(owned_dofs, comm);
@@ -891,7 +894,10 @@ namespace mpm
     if (dirichlet.has_contact())
       unconstrained_residual = 0.;
     if (with_tangent)
-      tangent = 0.;
+      {
+        tangent = 0.;
+        factorization.reset();
+      }
     double internal_force_square = 0.;
     double momentum_rate_square  = 0.;
     bool   inverted              = false;
@@ -1083,20 +1089,29 @@ namespace mpm
   ImplicitIntegrator<dim>::solve_linear_system()
   {
     correction = 0.;
-    SolverControl control(1000, 1e-10 * residual.l2_norm(), false, false);
     try
       {
         if (linear_solver != "CG-AMG")
           {
-            TrilinosWrappers::SolverDirect solver(
-              control,
-              TrilinosWrappers::SolverDirect::AdditionalData(
-                false,
-                linear_solver == "MUMPS" ? "Amesos_Mumps" : "Amesos_Klu"));
-            solver.solve(tangent, correction, residual);
+            if (!factorization)
+              {
+                factorization =
+                  std::make_unique<TrilinosWrappers::SolverDirect>(
+                    direct_solver_control,
+                    TrilinosWrappers::SolverDirect::AdditionalData(
+                      false,
+                      linear_solver == "MUMPS" ? "Amesos_Mumps" :
+                                                 "Amesos_Klu"));
+                factorization->initialize(tangent);
+              }
+            factorization->solve(correction, residual);
           }
         else
           {
+            SolverControl control(1000,
+                                  1e-10 * residual.l2_norm(),
+                                  false,
+                                  false);
             TrilinosWrappers::PreconditionAMG                 amg;
             TrilinosWrappers::PreconditionAMG::AdditionalData data;
             data.elliptic              = true;
@@ -1186,6 +1201,7 @@ namespace mpm
           {
             // MLS ties newly held nodes to their neighbours: new entries.
             make_cloud_constraints();
+            factorization.reset();
             tangent.reinit(owned_dofs,
                            owned_dofs,
                            cloud_sparsity_pattern(),

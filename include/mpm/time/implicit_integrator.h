@@ -9,6 +9,8 @@
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/particles/particle_handler.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/trilinos_solver.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
@@ -354,6 +356,14 @@ namespace mpm
     IndexSet                           relevant_dofs;
     AffineConstraints<double>          constraints;
     TrilinosWrappers::SparseMatrix     tangent;
+    /**
+     * The direct solver's factorisation of `tangent`, made at the first
+     * solve after the tangent was assembled or rebuilt: modified Newton
+     * solves with one tangent many times. A direct solve needs no
+     * tolerance, so its control logs nothing.
+     */
+    SolverControl direct_solver_control{1, 1e-10, false, false};
+    std::unique_ptr<TrilinosWrappers::SolverDirect> factorization;
     TrilinosWrappers::MPI::Vector      residual;
     TrilinosWrappers::MPI::Vector      correction;
     TrilinosWrappers::MPI::Vector      displacement;
