@@ -1236,10 +1236,11 @@ namespace mpm
         const double ratio =
           external_force_norm > 0. ? residual.l2_norm() / external_force_norm :
                                      0.;
+        // Formatted apart, so that the screen's precision stays as it is.
+        std::ostringstream ratio_text;
+        ratio_text << std::scientific << std::setprecision(3) << ratio;
         pcout << "    Newton " << std::setw(2) << iteration
-              << ": out-of-balance ratio " << std::scientific
-              << std::setprecision(3) << ratio << std::defaultfloat
-              << std::endl;
+              << ": out-of-balance ratio " << ratio_text.str() << std::endl;
         if (!std::isfinite(ratio))
           throw RunError("The out-of-balance force is not finite.");
         if (ratio < tolerance || (linear_only && iteration == 1))
