@@ -641,15 +641,16 @@ namespace mpm
     start_time = time;
     start_step = step;
     if (restarted)
-      last_checkpoint_time = time;
-    if (restarted)
-      pcout << "mpm: continuing from the checkpoint at t = " << time
-            << ", step " << step << std::endl
-            << (checkpoint->enabled() ?
-                  "" :
-                  "mpm: note: Checkpoint/Wall time interval is 0, so this "
-                  "part writes no checkpoint; a later --restart would go "
-                  "back to the one it started from.\n");
+      {
+        last_checkpoint_time = time;
+        pcout << "mpm: continuing from the checkpoint at t = " << time
+              << ", step " << step << std::endl
+              << (checkpoint->enabled() ?
+                    "" :
+                    "mpm: note: Checkpoint/Wall time interval is 0, so this "
+                    "part writes no checkpoint; a later --restart would go "
+                    "back to the one it started from.\n");
+      }
     else
       speeds = current_speeds();
 
