@@ -52,20 +52,43 @@ namespace mpm
     if (tangent == nullptr)
       return;
     tangent->reinit(n_dofs, n_dofs);
+    // c[a][p][b][q] g_k[q], once per node k: the pair loop below is then
+    // dim^3 products on plain arrays, not dim^4 SymmetricTensor lookups
+    // (the meshfree supports make it the innermost loop of a GMM step).
     const SymmetricTensor<4, 3> &c = *spatial_tangent;
+    double c_plain[dim][dim][dim][dim];
+    for (unsigned int a = 0; a < dim; ++a)
+      for (unsigned int p = 0; p < dim; ++p)
+        for (unsigned int b = 0; b < dim; ++b)
+          for (unsigned int q = 0; q < dim; ++q)
+            c_plain[a][p][b][q] = current_volume * c[a][p][b][q];
+    std::vector<std::array<double, dim * dim * dim>> c_g(support.n_nodes);
+    std::vector<Tensor<1, dim>> sigma_g(support.n_nodes);
+    for (unsigned int k = 0; k < support.n_nodes; ++k)
+      {
+        sigma_g[k] = current_volume * (sigma * g[k]);
+        for (unsigned int a = 0; a < dim; ++a)
+          for (unsigned int p = 0; p < dim; ++p)
+            for (unsigned int b = 0; b < dim; ++b)
+              {
+                double sum = 0.;
+                for (unsigned int q = 0; q < dim; ++q)
+                  sum += c_plain[a][p][b][q] * g[k][q];
+                c_g[k][(a * dim + p) * dim + b] = sum;
+              }
+      }
     for (unsigned int i = 0; i < support.n_nodes; ++i)
       for (unsigned int k = 0; k < support.n_nodes; ++k)
         {
-          const double geometric = current_volume * (g[i] * (sigma * g[k]));
+          const double geometric = g[i] * sigma_g[k];
           for (unsigned int a = 0; a < dim; ++a)
             for (unsigned int b = 0; b < dim; ++b)
               {
                 double material = 0.;
                 for (unsigned int p = 0; p < dim; ++p)
-                  for (unsigned int q = 0; q < dim; ++q)
-                    material += c[a][p][b][q] * g[i][p] * g[k][q];
+                  material += g[i][p] * c_g[k][(a * dim + p) * dim + b];
                 (*tangent)(i * dim + a, k * dim + b) =
-                  current_volume * material + (a == b ? geometric : 0.);
+                  material + (a == b ? geometric : 0.);
               }
         }
   }

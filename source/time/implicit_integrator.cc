@@ -10,12 +10,15 @@
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_solver.h>
 
+#include <Epetra_CrsMatrix.h>
+
 #include <mpm/assembly/point_assembly.h>
 #include <mpm/core/input_error.h>
 #include <mpm/time/implicit_integrator.h>
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <iomanip>
@@ -915,7 +918,13 @@ namespace mpm
       {
         const std::vector<types::global_dof_index> &dofs = group.dofs;
         const unsigned int dofs_per_cell = dofs.size();
-        cell_tangent.reinit(dofs_per_cell, dofs_per_cell);
+        // A group of one point (every meshfree point) writes its tangent
+        // straight into the group's matrix.
+        const bool          single_point = group.particles.size() == 1;
+        FullMatrix<double> &own_tangent =
+          single_point ? cell_tangent : point_tangent;
+        if (!single_point)
+          cell_tangent.reinit(dofs_per_cell, dofs_per_cell);
         cell_residual.reinit(dofs_per_cell);
         cell_external.reinit(dofs_per_cell);
         const double weight = group.weight;
@@ -954,7 +963,7 @@ namespace mpm
               stress,
               &c,
               point_force,
-              with_tangent ? &point_tangent : nullptr);
+              with_tangent ? &own_tangent : nullptr);
 
             for (unsigned int i = 0; i < support.n_nodes; ++i)
               for (unsigned int a = 0; a < dim; ++a)
@@ -967,7 +976,7 @@ namespace mpm
                   cell_residual(i * dim + a) +=
                     external - point_force(i * dim + a);
                 }
-            if (with_tangent)
+            if (with_tangent && !single_point)
               cell_tangent.add(1., point_tangent);
 
             if (dynamic)
@@ -1012,7 +1021,7 @@ namespace mpm
             internal_force_square +=
               (cell_external(i) - cell_residual(i)) *
               (cell_external(i) - cell_residual(i));
-        if (with_tangent)
+        if (with_tangent && !add_to_tangent(dofs, cell_tangent))
           constraints.distribute_local_to_global(
             cell_tangent, cell_residual, dofs, tangent, residual);
         else
@@ -1080,6 +1089,73 @@ namespace mpm
                   p[Layout::reference_volume];
       }
     return cell->measure() / volume;
+  }
+
+
+
+  template <int dim>
+  bool
+  ImplicitIntegrator<dim>::add_to_tangent(
+    const std::vector<types::global_dof_index> &dofs,
+    const FullMatrix<double> &                  matrix)
+  {
+    for (const types::global_dof_index dof : dofs)
+      if (!owned_dofs.is_element(dof) || constraints.is_constrained(dof))
+        return false;
+    // deal.II gives only const access to the Epetra matrix; its values
+    // belong to `tangent`, which is not const. FillComplete sorts each
+    // row's local column indices, so a group's columns sorted the same way
+    // are found in one pass along each row (a column not found throws).
+    Epetra_CrsMatrix &epetra =
+      const_cast<Epetra_CrsMatrix &>(tangent.trilinos_matrix());
+    if (!epetra.Filled())
+      return false;
+    const unsigned int n = dofs.size();
+    tangent_columns.resize(n);
+    for (unsigned int k = 0; k < n; ++k)
+      tangent_columns[k] = {epetra.ColMap().LID(
+                              static_cast<TrilinosWrappers::types::int_type>(
+                                dofs[k])),
+                            k};
+    std::sort(tangent_columns.begin(), tangent_columns.end());
+    tangent_offsets.resize(n);
+    const int *previous_columns = nullptr;
+    int        previous_length  = -1;
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        int     length;
+        double *values;
+        int *   columns;
+        AssertThrow(epetra.ExtractMyRowView(
+                      epetra.RowMap().LID(
+                        static_cast<TrilinosWrappers::types::int_type>(
+                          dofs[i])),
+                      length,
+                      values,
+                      columns) == 0,
+                    ExcMessage("An owned row of the tangent is missing."));
+        // The rows of one node's components usually hold the same columns:
+        // then the offsets found for the first serve them all.
+        if (length != previous_length ||
+            !std::equal(columns, columns + length, previous_columns))
+          {
+            int position = 0;
+            for (const auto &[column, k] : tangent_columns)
+              {
+                while (position < length && columns[position] < column)
+                  ++position;
+                AssertThrow(position < length && columns[position] == column,
+                            ExcMessage("A group's dofs are missing from the "
+                                       "sparsity pattern of the tangent."));
+                tangent_offsets[k] = position;
+              }
+            previous_columns = columns;
+            previous_length  = length;
+          }
+        for (unsigned int k = 0; k < n; ++k)
+          values[tangent_offsets[k]] += matrix(i, k);
+      }
+    return true;
   }
 
 

@@ -8,6 +8,7 @@
 
 #include <mpm/basis/support.h>
 
+#include <array>
 #include <vector>
 
 namespace mpm

@@ -270,6 +270,18 @@ namespace mpm
     assemble(const double load_factor, const bool with_tangent);
 
     /**
+     * Add a group's matrix into `tangent` when all its dofs are owned here
+     * and unconstrained, and return true; otherwise leave it to
+     * AffineConstraints and return false. Epetra's SumIntoGlobalValues
+     * maps and searches every entry: with the meshfree supports (48 x 48
+     * entries a point for LME 1.8) that was most of an assembly. Here each
+     * column is mapped once, and each row is searched in one sweep.
+     */
+    bool
+    add_to_tangent(const std::vector<types::global_dof_index> &dofs,
+                   const FullMatrix<double> &                  matrix);
+
+    /**
      * Factor on the point volumes of a cell in the quadrature of the
      * internal force (see the Integration parameter).
      */
@@ -356,6 +368,12 @@ namespace mpm
     IndexSet                           relevant_dofs;
     AffineConstraints<double>          constraints;
     TrilinosWrappers::SparseMatrix     tangent;
+    /**
+     * Scratch of add_to_tangent: a group's local columns, sorted, and
+     * where each of them sits in the current row.
+     */
+    std::vector<std::pair<int, unsigned int>> tangent_columns;
+    std::vector<int>                          tangent_offsets;
     /**
      * The direct solver's factorisation of `tangent`, made at the first
      * solve after the tangent was assembled or rebuilt: modified Newton
