@@ -42,11 +42,14 @@ namespace mpm
       for (unsigned int b = 0; b < dim; ++b)
         sigma[a][b] = stress[a][b];
 
+    // v sigma g_i: node i's internal force, and the geometric stiffness's
+    // factor below.
+    std::vector<Tensor<1, dim>> sigma_g(support.n_nodes);
     for (unsigned int i = 0; i < support.n_nodes; ++i)
       {
-        const Tensor<1, dim> r = current_volume * (sigma * g[i]);
+        sigma_g[i] = current_volume * (sigma * g[i]);
         for (unsigned int a = 0; a < dim; ++a)
-          force(i * dim + a) = r[a];
+          force(i * dim + a) = sigma_g[i][a];
       }
 
     if (tangent == nullptr)
@@ -63,20 +66,16 @@ namespace mpm
           for (unsigned int q = 0; q < dim; ++q)
             c_plain[a][p][b][q] = current_volume * c[a][p][b][q];
     std::vector<std::array<double, dim * dim * dim>> c_g(support.n_nodes);
-    std::vector<Tensor<1, dim>> sigma_g(support.n_nodes);
     for (unsigned int k = 0; k < support.n_nodes; ++k)
-      {
-        sigma_g[k] = current_volume * (sigma * g[k]);
-        for (unsigned int a = 0; a < dim; ++a)
-          for (unsigned int p = 0; p < dim; ++p)
-            for (unsigned int b = 0; b < dim; ++b)
-              {
-                double sum = 0.;
-                for (unsigned int q = 0; q < dim; ++q)
-                  sum += c_plain[a][p][b][q] * g[k][q];
-                c_g[k][(a * dim + p) * dim + b] = sum;
-              }
-      }
+      for (unsigned int a = 0; a < dim; ++a)
+        for (unsigned int p = 0; p < dim; ++p)
+          for (unsigned int b = 0; b < dim; ++b)
+            {
+              double sum = 0.;
+              for (unsigned int q = 0; q < dim; ++q)
+                sum += c_plain[a][p][b][q] * g[k][q];
+              c_g[k][(a * dim + p) * dim + b] = sum;
+            }
     for (unsigned int i = 0; i < support.n_nodes; ++i)
       for (unsigned int k = 0; k < support.n_nodes; ++k)
         {
