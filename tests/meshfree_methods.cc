@@ -195,6 +195,9 @@ main(int argc, char **argv)
             drift < 0.01);
     }
 
+  for (const std::string method : {"GMM-MLS", "GMM-LME"})
+    mpm_tests::check_plastic_tangent(method);
+
   const double reference = 0.67433;
   std::map<std::string, double> tip;
   for (const std::string method : {"MPM", "GMM-MLS", "GMM-LME"})

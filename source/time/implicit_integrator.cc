@@ -20,6 +20,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <iomanip>
 #include <sstream>
@@ -56,6 +57,18 @@ namespace mpm
                       "Newton cycles. Each halving costs one more "
                       "assembly; the trial kept is the next iterate and is "
                       "not assembled again.");
+    prm.declare_entry("Check tangent", "false", Patterns::Bool(),
+                      "At each assembly of the tangent K, compare K d with "
+                      "central differences of the out-of-balance force r "
+                      "along a fixed pseudo-random direction d of size "
+                      "3e-9 times the smallest cell (within the "
+                      "constraints), and print |K d + (r(u + d) - r(u - "
+                      "d)) / 2| / |K d| over the unconstrained rows: about "
+                      "5e-8 (round-off) for a consistent tangent. A point "
+                      "within d of a kink of its yield surface gives an "
+                      "isolated larger value. For checking a new material "
+                      "law or condition; costs three assemblies of the "
+                      "force per check.");
     prm.declare_entry(
       "Integration", "full cells by cell volume",
       Patterns::Selection("material points|full cells by cell volume"),
@@ -140,6 +153,7 @@ namespace mpm
     modified_newton = prm.get("Variant") == "modified";
     linear_only     = prm.get("Variant") == "linear";
     line_search     = prm.get_bool("Line search");
+    check_tangent   = prm.get_bool("Check tangent");
     if (line_search && linear_only)
       throw InputError("Newton/Line search does not go with Variant = "
                        "linear, which accepts its one iteration as it is.");
@@ -1162,6 +1176,67 @@ namespace mpm
 
   template <int dim>
   void
+  ImplicitIntegrator<dim>::report_tangent_error(const double load_factor)
+  {
+    // splitmix64 of the global dof index, in [-1, 1): the same direction
+    // on any number of ranks.
+    auto pseudo_random = [](std::uint64_t z) {
+      z += 0x9E3779B97F4A7C15ull;
+      z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+      z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+      z ^= z >> 31;
+      return 2. * static_cast<double>(z >> 11) * 0x1.0p-53 - 1.;
+    };
+    const TrilinosWrappers::MPI::Vector start(displacement);
+    TrilinosWrappers::MPI::Vector       direction(displacement);
+    for (const types::global_dof_index i : owned_dofs)
+      direction[i] = 3e-9 * basis.minimum_cell_size() * pseudo_random(i);
+    direction.compress(VectorOperation::insert);
+    // distribute() of u + d keeps the constraints' inhomogeneities, which
+    // u satisfies, so the step taken is d within the constraints.
+    TrilinosWrappers::MPI::Vector perturbed(start);
+    perturbed += direction;
+    constraints.distribute(perturbed);
+    direction = perturbed;
+    direction -= start;
+    TrilinosWrappers::MPI::Vector tangent_times_direction(direction);
+    tangent.vmult(tangent_times_direction, direction);
+
+    auto assemble_at = [&](const TrilinosWrappers::MPI::Vector &u) {
+      displacement         = u;
+      displacement_ghosted = u;
+      assemble(load_factor, false);
+    };
+    assemble_at(perturbed);
+    TrilinosWrappers::MPI::Vector mismatch(residual);
+    perturbed = start;
+    perturbed -= direction;
+    assemble_at(perturbed);
+    // r = f_ext - f_int - inertia and K = -dr/du.
+    mismatch -= residual;
+    mismatch *= 0.5;
+    mismatch += tangent_times_direction;
+    for (const types::global_dof_index i : owned_dofs)
+      if (constraints.is_constrained(i))
+        {
+          mismatch[i]                = 0.;
+          tangent_times_direction[i] = 0.;
+        }
+    mismatch.compress(VectorOperation::insert);
+    tangent_times_direction.compress(VectorOperation::insert);
+    assemble_at(start);
+
+    std::ostringstream error_text;
+    error_text << std::scientific << std::setprecision(3)
+               << mismatch.l2_norm() / tangent_times_direction.l2_norm();
+    pcout << "    tangent check: |K d + (r(u + d) - r(u - d)) / 2| / |K d| = "
+          << error_text.str() << std::endl;
+  }
+
+
+
+  template <int dim>
+  void
   ImplicitIntegrator<dim>::solve_linear_system()
   {
     correction = 0.;
@@ -1319,6 +1394,11 @@ namespace mpm
               << ": out-of-balance ratio " << ratio_text.str() << std::endl;
         if (!std::isfinite(ratio))
           throw RunError("The out-of-balance force is not finite.");
+        if (check_tangent && (iteration == 0 || !modified_newton))
+          {
+            TimerOutput::Scope t(timer, "tangent check");
+            report_tangent_error(load_factor);
+          }
         if (ratio < tolerance || (linear_only && iteration == 1))
           {
             converged = true;

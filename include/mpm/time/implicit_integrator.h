@@ -289,6 +289,14 @@ namespace mpm
     quadrature_scale(
       const typename DoFHandler<dim>::active_cell_iterator &cell) const;
 
+    /**
+     * Newton/Check tangent: print how far the assembled tangent is from
+     * central differences of the residual along one direction. Leaves the
+     * residual and the displacement as they were.
+     */
+    void
+    report_tangent_error(const double load_factor);
+
     void
     solve_linear_system();
 
@@ -347,6 +355,7 @@ namespace mpm
     bool         modified_newton;
     bool         linear_only;
     bool         line_search;
+    bool         check_tangent;
     std::string  linear_solver;
     bool         scale_full_cells;
     bool         dynamic;
