@@ -124,11 +124,20 @@ namespace mpm_tests
       }
     arguments.push_back(source_file(scene));
     std::ostringstream captured;
-    std::streambuf *   cout_buffer = std::cout.rdbuf();
-    if (screen)
-      std::cout.rdbuf(captured.rdbuf());
-    const int code = mpm::run_command_line(arguments);
-    std::cout.rdbuf(cout_buffer);
+    int                code;
+    {
+      // Puts std::cout back however the run ends.
+      struct Redirect
+      {
+        std::streambuf *original;
+        ~Redirect()
+        {
+          std::cout.rdbuf(original);
+        }
+      } redirect{screen ? std::cout.rdbuf(captured.rdbuf()) :
+                          std::cout.rdbuf()};
+      code = mpm::run_command_line(arguments);
+    }
     if (screen)
       *screen = captured.str();
     dealii::deallog << directory << ": exit code " << code << std::endl;

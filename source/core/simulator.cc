@@ -323,8 +323,10 @@ namespace mpm
       *points, restart);
     // A continued run may go on further, or with smaller steps (after a
     // run that went unstable). The quasi-static loads ramp over End time,
-    // so there only the number of load steps may change.
-    std::vector<std::string> entries_that_may_change = {"Output/Directory"};
+    // so there only the number of load steps may change. The tangent
+    // check only prints (and checkpoints from before it lack the entry).
+    std::vector<std::string> entries_that_may_change = {
+      "Output/Directory", "Newton/Check tangent"};
     if (!implicit)
       entries_that_may_change.insert(entries_that_may_change.end(),
                                      {"Time stepping/End time",
