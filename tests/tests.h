@@ -173,10 +173,12 @@ namespace mpm_tests
     std::istringstream lines(screen);
     unsigned int       checks = 0, matching = 0;
     for (std::string line; std::getline(lines, line);)
+      // Lines with a measured value; a check not made counts as failed.
       if (line.find("tangent check:") != std::string::npos)
         {
           ++checks;
-          matching += std::stod(line.substr(line.rfind(' ') + 1)) < 1e-6;
+          matching += line.find("|K d| = ") != std::string::npos &&
+                      std::stod(line.substr(line.rfind(' ') + 1)) < 1e-6;
         }
     if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
       check(method + ": plastic column, 0.2 s: the assembled tangent is "
