@@ -1410,10 +1410,12 @@ namespace mpm
     bool assembled = false; // the line search assembled at this iterate
     for (unsigned int iteration = 0; iteration <= max_iterations; ++iteration)
       {
+        // Modified Newton keeps the first iteration's tangent.
+        const bool new_tangent = iteration == 0 || !modified_newton;
         if (!assembled)
           {
             TimerOutput::Scope t(timer, "assemble");
-            assemble(load_factor, iteration == 0 || !modified_newton);
+            assemble(load_factor, new_tangent);
           }
         const double ratio =
           external_force_norm > 0. ? residual.l2_norm() / external_force_norm :
@@ -1425,7 +1427,7 @@ namespace mpm
               << ": out-of-balance ratio " << ratio_text.str() << std::endl;
         if (!std::isfinite(ratio))
           throw RunError("The out-of-balance force is not finite.");
-        if (check_tangent && (iteration == 0 || !modified_newton))
+        if (check_tangent && new_tangent)
           {
             TimerOutput::Scope t(timer, "tangent check");
             report_tangent_error(load_factor);
