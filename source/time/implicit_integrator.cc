@@ -1196,9 +1196,10 @@ namespace mpm
       start_unconstrained_residual = unconstrained_residual;
     const double start_external_force_norm = external_force_norm;
 
+    const double probe_size = 3e-9 * basis.minimum_cell_size();
     TrilinosWrappers::MPI::Vector direction(displacement);
     for (const types::global_dof_index i : owned_dofs)
-      direction[i] = 3e-9 * basis.minimum_cell_size() * pseudo_random(i);
+      direction[i] = probe_size * pseudo_random(i);
     direction.compress(VectorOperation::insert);
     // distribute() of u + d keeps the constraints' inhomogeneities, which
     // u satisfies, so the step taken is d within the constraints.
@@ -1215,7 +1216,7 @@ namespace mpm
       displacement_ghosted = u;
       assemble(load_factor, false);
     };
-    TrilinosWrappers::MPI::Vector mismatch(residual);
+    TrilinosWrappers::MPI::Vector mismatch;
     bool                          inverted = false;
     try
       {
