@@ -14,8 +14,9 @@
 
 #include <mpm/assembly/grid_transfer.h>
 #include <mpm/bodies/body.h>
+#include <mpm/bodies/point_seeder.h>
 #include <mpm/boundary/dirichlet_conditions.h>
-#include <mpm/grid/background_grid.h>
+#include <mpm/grid/grid.h>
 
 #include <cmath>
 #include <random>
@@ -46,7 +47,7 @@ test()
   const MPI_Comm comm = MPI_COMM_WORLD;
 
   ParameterHandler prm;
-  BackgroundGrid<dim>::declare_parameters(prm);
+  Grid<dim>::declare_parameters(prm);
   DirichletConditions<dim>::declare_parameters(prm);
   prm.enter_subsection("body");
   Body<dim>::declare_parameters(prm);
@@ -62,19 +63,18 @@ test()
                 " set Lower corner = 0,0,0\n set Upper corner = 1,1,1\n") +
     " set Material = steel\n set Points per cell direction = 3\nend\n");
 
-  parallel::distributed::Triangulation<dim> tria(comm);
-  BackgroundGrid<dim>                       grid(prm);
-  grid.create(tria);
-  GridTools::transform(&distort<dim>, tria);
+  Grid<dim> grid(prm, comm);
+  grid.create();
+  grid.transform(&distort<dim>);
+  const auto &tria = grid.get_triangulation();
 
-  GridNodes<dim> nodes(tria);
+  GridNodes<dim> nodes(grid);
   nodes.setup();
-  GridBasis<dim> basis;
-  basis.reinit(nodes);
+  GridBasis<dim>           basis(grid);
   DirichletConditions<dim> dirichlet(prm, grid);
-  dirichlet.setup(nodes);
+  dirichlet.setup();
   MappingQ<dim> mapping(1);
-  deallog << "grid is cartesian: " << basis.grid_is_cartesian() << std::endl;
+  deallog << "grid is cartesian: " << grid.is_cartesian() << std::endl;
 
   // Basis identities at random points of every locally owned cell.
   {
@@ -160,7 +160,8 @@ test()
     prm.leave_subsection();
 
     MaterialPoints<dim> points(tria, mapping, {}, false);
-    points.seed(bodies, materials, basis);
+    PointSeeder<dim> seeder(grid);
+    seeder.seed(bodies, materials, points);
     using Layout = PointLayout<dim>;
     // Masses and velocities from the point id, the same on any number of
     // ranks.
@@ -198,16 +199,15 @@ test()
 
     // Sum over owned nodes only, so that shared nodes count once.
     using NodalLayout = typename GridNodes<dim>::NodalLayout;
-    const double * v       = nodes.data();
-    const unsigned n_owned = nodes.vector().locally_owned_size();
+    const unsigned n_owned   = grid.node_partitioner()->locally_owned_size();
     double         grid_mass = 0.;
     Tensor<1, dim> grid_momentum;
-    for (unsigned int node = 0; node < n_owned;
-         node += NodalLayout::n_components)
+    for (unsigned int node = 0; node < n_owned; ++node)
       {
-        grid_mass += v[node + NodalLayout::mass];
+        const double *v = nodes.values_of(node);
+        grid_mass += v[NodalLayout::mass];
         for (unsigned int d = 0; d < dim; ++d)
-          grid_momentum[d] += v[node + NodalLayout::velocity + d];
+          grid_momentum[d] += v[NodalLayout::velocity + d];
       }
     grid_mass     = Utilities::MPI::sum(grid_mass, comm);
     grid_momentum = Utilities::MPI::sum(grid_momentum, comm);

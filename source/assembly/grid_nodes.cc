@@ -3,14 +3,15 @@
 
 #include <mpm/assembly/grid_nodes.h>
 
+#include <algorithm>
+
 namespace mpm
 {
   template <int dim>
-  GridNodes<dim>::GridNodes(
-    const parallel::distributed::Triangulation<dim> &tria)
-    : triangulation(tria)
-    , fe(FE_Q<dim>(1), NodalLayout::n_components)
-    , dof_handler(tria)
+  GridNodes<dim>::GridNodes(const Grid<dim> &grid)
+    : grid(grid)
+    , system_element(FE_Q<dim>(1), NodalLayout::n_components)
+    , system_dof_handler(grid.get_triangulation())
   {}
 
 
@@ -19,37 +20,44 @@ namespace mpm
   void
   GridNodes<dim>::setup()
   {
-    dof_handler.distribute_dofs(fe);
+    system_dof_handler.distribute_dofs(system_element);
     IndexSet relevant;
-    DoFTools::extract_locally_relevant_dofs(dof_handler, relevant);
-    partitioner = std::make_shared<Utilities::MPI::Partitioner>(
-      dof_handler.locally_owned_dofs(),
-      relevant,
-      triangulation.get_communicator());
-    values.reinit(partitioner);
+    DoFTools::extract_locally_relevant_dofs(system_dof_handler, relevant);
+    values.reinit(system_dof_handler.locally_owned_dofs(),
+                  relevant,
+                  grid.get_communicator());
 
-    const unsigned int n_local = partitioner->locally_owned_size() +
-                                 partitioner->n_ghost_indices();
-    // A node's values must be consecutive and start at a multiple of
-    // n_components in the local numbering (the active flags rely on it).
-    for (const auto &cell : dof_handler.active_cell_iterators())
+    // Value c of node i sits at n_components i + c: the system numbering
+    // must be the grid's node numbering, component by component.
+    for (const auto &cell : grid.node_numbering().active_cell_iterators())
       if (!cell->is_artificial())
-        for (const unsigned int v : cell->vertex_indices())
-          for (unsigned int c = 0; c < NodalLayout::n_components; ++c)
-            AssertThrow(local_index(cell->vertex_dof_index(v, c)) ==
-                          local_index(cell->vertex_dof_index(v, 0)) + c &&
-                        local_index(cell->vertex_dof_index(v, 0)) %
-                            NodalLayout::n_components ==
-                          0,
-                        ExcInternalError());
-    active_flag.assign(n_local / NodalLayout::n_components, false);
+        {
+          const typename DoFHandler<dim>::active_cell_iterator system_cell(
+            &grid.get_triangulation(),
+            cell->level(),
+            cell->index(),
+            &system_dof_handler);
+          for (const unsigned int v : cell->vertex_indices())
+            for (unsigned int c = 0; c < NodalLayout::n_components; ++c)
+              AssertThrow(
+                system_cell->vertex_dof_index(v, c) ==
+                    NodalLayout::n_components * cell->vertex_dof_index(v, 0) +
+                      c &&
+                  values.get_partitioner()->global_to_local(
+                    system_cell->vertex_dof_index(v, c)) ==
+                    NodalLayout::n_components *
+                        grid.node_of_dof(cell->vertex_dof_index(v, 0)) +
+                      c,
+                ExcInternalError());
+        }
+
+    active_flag.assign(grid.n_nodes(), false);
     active_nodes.clear();
 
     imported_nodes.clear();
-    for (const auto &range : partitioner->import_indices())
+    for (const auto &range : grid.node_partitioner()->import_indices())
       for (unsigned int i = range.first; i < range.second; ++i)
-        if (i % NodalLayout::n_components == 0)
-          imported_nodes.push_back(i);
+        imported_nodes.push_back(i);
     std::sort(imported_nodes.begin(), imported_nodes.end());
     imported_nodes.erase(std::unique(imported_nodes.begin(),
                                      imported_nodes.end()),
@@ -64,21 +72,28 @@ namespace mpm
                                    const unsigned int n_components)
   {
     values.zero_out_ghost_values();
-    double *v = values.get_values();
     for (const unsigned int node : active_nodes)
-      for (unsigned int c = first_component; c < first_component + n_components;
-           ++c)
-        v[node + c] = 0.;
+      {
+        double *v = values_of(node);
+        for (unsigned int c = first_component;
+             c < first_component + n_components;
+             ++c)
+          v[c] = 0.;
+      }
     for (const unsigned int node : imported_nodes)
-      for (unsigned int c = first_component; c < first_component + n_components;
-           ++c)
-        v[node + c] = 0.;
+      {
+        double *v = values_of(node);
+        for (unsigned int c = first_component;
+             c < first_component + n_components;
+             ++c)
+          v[c] = 0.;
+      }
 
     full_projection = (n_components == NodalLayout::n_components);
     if (full_projection)
       {
         for (const unsigned int node : active_nodes)
-          active_flag[node / NodalLayout::n_components] = false;
+          active_flag[node] = false;
         active_nodes.clear();
       }
   }
@@ -96,10 +111,8 @@ namespace mpm
     if (!full_projection)
       return;
     solve_nodes = active_nodes;
-    const double *v = values.get_values();
     for (const unsigned int node : imported_nodes)
-      if (!active_flag[node / NodalLayout::n_components] &&
-          v[node + NodalLayout::mass] > 0.)
+      if (!active_flag[node] && values_of(node)[NodalLayout::mass] > 0.)
         solve_nodes.push_back(node);
   }
 

@@ -22,7 +22,6 @@ namespace mpm
   GridTransfer<dim>::add_force(const ArrayView<const double> &p,
                                const Support<dim> &           support)
   {
-    double *           v = nodes.data();
     const double       m = p[Layout::mass];
     const Tensor<2, dim> F = Layout::get_deformation_gradient(p);
     const double volume  = determinant(F) * p[Layout::reference_volume];
@@ -40,7 +39,7 @@ namespace mpm
     for (unsigned int i = 0; i < support.n_nodes; ++i)
       {
         const Tensor<1, dim> internal = volume * (sigma * support.grad_N[i]);
-        double *             f = v + support.nodes[i] + NodalLayout::force;
+        double *f = nodes.values_of(support.nodes[i]) + NodalLayout::force;
         for (unsigned int d = 0; d < dim; ++d)
           f[d] += support.N[i] * external[d] - internal[d];
       }
@@ -53,17 +52,17 @@ namespace mpm
   GridTransfer<dim>::project_mass_momentum(const bool with_force)
   {
     nodes.begin_projection(0, NodalLayout::n_components);
-    double *v = nodes.data();
     for_each_point([&](const auto &particle, const Support<dim> &support) {
       const ArrayView<const double> p = particle->get_properties();
       const double                  m = p[Layout::mass];
       for (unsigned int i = 0; i < support.n_nodes; ++i)
         {
           const unsigned int node = support.nodes[i];
+          double *           v    = nodes.values_of(node);
           const double       Nm   = support.N[i] * m;
-          v[node + NodalLayout::mass] += Nm;
+          v[NodalLayout::mass] += Nm;
           for (unsigned int d = 0; d < dim; ++d)
-            v[node + NodalLayout::velocity + d] += Nm * p[Layout::velocity + d];
+            v[NodalLayout::velocity + d] += Nm * p[Layout::velocity + d];
           nodes.mark_active(node);
         }
       if (with_force)
@@ -79,14 +78,15 @@ namespace mpm
   GridTransfer<dim>::project_momentum()
   {
     nodes.begin_projection(NodalLayout::velocity, dim);
-    double *v = nodes.data();
     for_each_point([&](const auto &particle, const Support<dim> &support) {
       const ArrayView<const double> p = particle->get_properties();
       const double                  m = p[Layout::mass];
       for (unsigned int i = 0; i < support.n_nodes; ++i)
-        for (unsigned int d = 0; d < dim; ++d)
-          v[support.nodes[i] + NodalLayout::velocity + d] +=
-            support.N[i] * m * p[Layout::velocity + d];
+        {
+          double *v = nodes.values_of(support.nodes[i]) + NodalLayout::velocity;
+          for (unsigned int d = 0; d < dim; ++d)
+            v[d] += support.N[i] * m * p[Layout::velocity + d];
+        }
     });
     nodes.finish_projection();
   }
@@ -110,17 +110,17 @@ namespace mpm
   void
   GridTransfer<dim>::compute_nodal_velocity(const bool constrain)
   {
-    double *v = nodes.data();
     for (const unsigned int node : nodes.nodes_to_solve())
       {
         // A point exactly on a cell face gives the opposite nodes N = 0 and
         // so zero mass and momentum; their velocity is zero, not 0/0.
-        const double m = v[node + NodalLayout::mass];
+        double *     v = nodes.values_of(node);
+        const double m = v[NodalLayout::mass];
         for (unsigned int d = 0; d < dim; ++d)
-          v[node + NodalLayout::velocity + d] =
-            m > 0. ? v[node + NodalLayout::velocity + d] / m : 0.;
+          v[NodalLayout::velocity + d] =
+            m > 0. ? v[NodalLayout::velocity + d] / m : 0.;
         if (constrain)
-          dirichlet.apply(node, v + node + NodalLayout::velocity);
+          dirichlet.apply(node, v + NodalLayout::velocity);
       }
   }
 
@@ -131,12 +131,12 @@ namespace mpm
   GridTransfer<dim>::compute_nodal_acceleration(const double dt,
                                                 const bool   advance_velocity)
   {
-    double *v = nodes.data();
     for (const unsigned int node : nodes.nodes_to_solve())
       {
-        const double m        = v[node + NodalLayout::mass];
-        double *     a        = v + node + NodalLayout::force;
-        double *     velocity = v + node + NodalLayout::velocity;
+        double *     v        = nodes.values_of(node);
+        const double m        = v[NodalLayout::mass];
+        double *     a        = v + NodalLayout::force;
+        double *     velocity = v + NodalLayout::velocity;
         for (unsigned int d = 0; d < dim; ++d)
           a[d] = m > 0. ? a[d] / m : 0.;
         dirichlet.apply(node, a);

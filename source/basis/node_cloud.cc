@@ -7,9 +7,9 @@ namespace mpm
 {
   template <int dim>
   NodeCloud<dim>::NodeCloud(const MaterialPoints<dim> &      points,
-                            const GridBasis<dim> &           basis,
+                            const Grid<dim> &                grid,
                             const DirichletConditions<dim> & dirichlet)
-    : nodal_spacing(basis.minimum_cell_size())
+    : nodal_spacing(grid.minimum_cell_size())
   {
     std::map<unsigned int, unsigned int> node_of_vertex;
     for (const auto &cell : points.get_triangulation().active_cell_iterators())
@@ -23,7 +23,7 @@ namespace mpm
             {
               positions.push_back(cell->vertex(v));
               conditions.push_back(dirichlet.constraint_of(
-                basis.node_of(cell->active_cell_index(), v)));
+                grid.node_of(cell->active_cell_index(), v)));
             }
       }
     velocities.resize(positions.size());

@@ -40,7 +40,8 @@ namespace mpm
 
   template <int dim>
   DirichletConditions<dim>::DirichletConditions(ParameterHandler &prm,
-                                                const BackgroundGrid<dim> &grid)
+                                                const Grid<dim> & grid)
+    : grid(grid)
   {
     prm.enter_subsection("Boundary conditions");
     fixed_names = Utilities::split_string_list(prm.get("Fixed boundaries"));
@@ -63,10 +64,10 @@ namespace mpm
 
   template <int dim>
   void
-  DirichletConditions<dim>::setup(const GridNodes<dim> &nodes)
+  DirichletConditions<dim>::setup()
   {
-    const DoFHandler<dim> &dof_handler = nodes.get_dof_handler();
-    const auto &           tria        = dof_handler.get_triangulation();
+    const DoFHandler<dim> &dof_handler = grid.node_numbering();
+    const auto &           tria        = grid.get_triangulation();
 
     // Every named boundary must exist somewhere in the grid.
     const std::vector<types::boundary_id> present = tria.get_boundary_ids();
@@ -95,12 +96,7 @@ namespace mpm
           contact_names,
           "Boundary conditions/Contact boundaries");
 
-    constexpr unsigned int n_components =
-      GridNodes<dim>::NodalLayout::n_components;
-    const unsigned int n_local_nodes =
-      nodes.vector().get_partitioner()->locally_owned_size() / n_components +
-      nodes.vector().get_partitioner()->n_ghost_indices() / n_components;
-    constraint_of_node.assign(n_local_nodes, -1);
+    constraint_of_node.assign(grid.n_nodes(), -1);
     constraints.clear();
 
     // Per boundary node: is it on a fixed face, and the sum of the outward
@@ -147,8 +143,8 @@ namespace mpm
 
             for (const unsigned int v : face->vertex_indices())
               {
-                NodeFaces &node = boundary_nodes[nodes.local_index(
-                  face->vertex_dof_index(v, 0))];
+                NodeFaces &node =
+                  boundary_nodes[grid.node_of_dof(face->vertex_dof_index(v, 0))];
                 if (fixed)
                   node.fixed = true;
                 else if (contact)
@@ -191,7 +187,7 @@ namespace mpm
                 constraint.normals[constraint.n_normals++] =
                   residual / residual.norm();
             }
-        constraint_of_node[node / n_components] = constraints.size();
+        constraint_of_node[node] = constraints.size();
         constraints.push_back(constraint);
       }
     if (Utilities::MPI::logical_or(slanted_contact,

@@ -1,6 +1,4 @@
 #include <deal.II/base/mpi.h>
-#include <deal.II/fe/mapping_cartesian.h>
-#include <deal.II/fe/mapping_q.h>
 
 #include <mpm/core/input_error.h>
 #include <mpm/core/parse.h>
@@ -42,7 +40,7 @@ namespace mpm
       "meshfree methods run with the quasi-static and Newmark schemes, on "
       "one rank.");
     MeshfreeBasis<dim>::declare_parameters(prm);
-    BackgroundGrid<dim>::declare_parameters(prm);
+    Grid<dim>::declare_parameters(prm);
     DirichletConditions<dim>::declare_parameters(prm);
     PointLoads<dim>::declare_parameters(prm);
     ImplicitIntegrator<dim>::declare_parameters(prm);
@@ -154,8 +152,6 @@ namespace mpm
     , progress_in_place(isatty(STDOUT_FILENO) &&
                         std::getenv("OMPI_COMM_WORLD_SIZE") == nullptr &&
                         std::getenv("PMI_SIZE") == nullptr)
-    , triangulation(communicator)
-    , nodes(triangulation)
   {
     TimerOutput::Scope timer_section(timer, "setup");
 
@@ -207,7 +203,7 @@ namespace mpm
       }
     prm.leave_subsection();
 
-    grid = std::make_unique<BackgroundGrid<dim>>(prm);
+    grid      = std::make_unique<Grid<dim>>(prm, communicator);
     dirichlet = std::make_unique<DirichletConditions<dim>>(prm, *grid);
     if (dirichlet->has_contact() && scheme_name == "explicit")
       throw InputError("Boundary conditions/Contact boundaries are handled by "
@@ -216,14 +212,11 @@ namespace mpm
                        "boundaries.");
 
     // Set up the grid and everything on it.
-    grid->create(triangulation);
-    nodes.setup();
-    basis.reinit(nodes);
-    dirichlet->setup(nodes);
-    if (basis.grid_is_cartesian())
-      mapping = std::make_unique<MappingCartesian<dim>>();
-    else
-      mapping = std::make_unique<MappingQ<dim>>(1);
+    grid->create();
+    nodes = std::make_unique<GridNodes<dim>>(*grid);
+    nodes->setup();
+    basis = std::make_unique<GridBasis<dim>>(*grid);
+    dirichlet->setup();
 
     // Every point carries as many internal variables as the largest law
     // needs, named after that law. Laws that share a variable keep it at
@@ -249,12 +242,13 @@ namespace mpm
                            "scene cannot hold both: the point output would "
                            "name them wrongly.");
       }
-    points = std::make_unique<MaterialPoints<dim>>(triangulation,
-                                                   *mapping,
+    points = std::make_unique<MaterialPoints<dim>>(grid->get_triangulation(),
+                                                   grid->get_mapping(),
                                                    internal_names,
                                                    scheme_name != "explicit");
-    points->seed(bodies, materials, basis);
-    points->apply_geostatic_stress(bodies, materials, gravity);
+    seeder = std::make_unique<PointSeeder<dim>>(*grid);
+    seeder->seed(bodies, materials, *points);
+    seeder->apply_geostatic_stress(bodies, materials, gravity, *points);
     loads = std::make_unique<PointLoads<dim>>(prm,
                                               scheme_name == "quasi-static",
                                               end_time);
@@ -268,9 +262,9 @@ namespace mpm
                        "the shapes in Bodies against Grid/Arguments.");
 
     transfer = std::make_unique<GridTransfer<dim>>(
-      *points, basis, nodes, *dirichlet, gravity);
+      *points, *basis, *nodes, *dirichlet, gravity);
     integrator = std::make_unique<ExplicitIntegrator<dim>>(
-      *transfer, materials, scheme, pic_fraction, basis.minimum_cell_size(),
+      *transfer, materials, scheme, pic_fraction, grid->minimum_cell_size(),
       timer);
     std::unique_ptr<MeshfreeBasis<dim>> meshfree;
     if (method != "MPM")
@@ -290,14 +284,15 @@ namespace mpm
             prm,
             method == "GMM-MLS" ? MeshfreeBasis<dim>::Kind::mls :
                                   MeshfreeBasis<dim>::Kind::lme,
-            basis.minimum_cell_size()));
+            grid->minimum_cell_size()));
       }
     if (scheme_name != "explicit")
       implicit = std::make_unique<ImplicitIntegrator<dim>>(scheme_name ==
                                                              "Newmark",
                                                            prm,
                                                            *points,
-                                                           basis,
+                                                           *grid,
+                                                           *basis,
                                                            *dirichlet,
                                                            materials,
                                                            gravity,
@@ -389,7 +384,7 @@ namespace mpm
                      Layout::get_stress(p),
                      ArrayView<const double>(&p[Layout::internal_variables],
                                              material.n_internal_variables()),
-                     basis.minimum_cell_size()));
+                     grid->minimum_cell_size()));
       }
     speeds.point  = Utilities::MPI::max(speeds.point, communicator);
     speeds.signal = Utilities::MPI::max(speeds.signal, communicator);
@@ -402,7 +397,7 @@ namespace mpm
   double
   Simulator<dim>::stability_limit(const Speeds &speeds) const
   {
-    return basis.minimum_cell_size() / (speeds.signal + speeds.point);
+    return grid->minimum_cell_size() / (speeds.signal + speeds.point);
   }
 
 
@@ -432,7 +427,7 @@ namespace mpm
     std::ostringstream message;
     message << "Time stepping/Time step = " << fixed_time_step
             << " exceeds the explicit stability limit " << limit
-            << " (smallest cell edge " << basis.minimum_cell_size()
+            << " (smallest cell edge " << grid->minimum_cell_size()
             << " over the largest signal speed plus the fastest point)";
     return message.str();
   }
@@ -624,7 +619,7 @@ namespace mpm
   {
     archive &time &step &dt &speeds.point &speeds.signal &next_output
       &next_time_series &next_implicit_step;
-    archive &*points &*vtu_output &*time_series;
+    archive &*points &*seeder &*vtu_output &*time_series;
     if (implicit)
       archive &*implicit;
   }
@@ -635,7 +630,7 @@ namespace mpm
   void
   Simulator<dim>::run()
   {
-    pcout << "mpm: " << dim << "D, " << triangulation.n_global_active_cells()
+    pcout << "mpm: " << dim << "D, " << grid->get_triangulation().n_global_active_cells()
           << " cells, " << points->n_global_points() << " material points, "
           << Utilities::MPI::n_mpi_processes(communicator) << " rank(s)"
           << std::endl;
@@ -684,8 +679,8 @@ namespace mpm
         if (write_paraview)
           vtu_output->write(time,
                             *points,
-                            nodes,
-                            *mapping,
+                            *nodes,
+                            grid->get_mapping(),
                             implicit ? implicit->node_cloud() : nullptr);
       }
     const double time_tolerance = end_time_tolerance();
@@ -743,8 +738,8 @@ namespace mpm
               }
             vtu_output->write(time,
                               *points,
-                              nodes,
-                              *mapping,
+                              *nodes,
+                              grid->get_mapping(),
                               implicit ? implicit->node_cloud() : nullptr);
             while (output_interval > 0. &&
                    next_output <= time + time_tolerance)

@@ -172,17 +172,16 @@ namespace mpm
           }
 
         // A ghost node that no local point touches holds the owner's raw
-        // sums from the last projection; fetch the owner's solved values.
-        nodes.vector().update_ghost_values();
-
+        // sums from the last projection; output_vector() fetches the
+        // owner's solved values.
         DataOut<dim> data_out;
-        data_out.attach_dof_handler(nodes.get_dof_handler());
-        data_out.add_data_vector(nodes.vector(),
+        data_out.attach_dof_handler(nodes.output_dof_handler());
+        data_out.add_data_vector(nodes.output_vector(),
                                  names,
                                  DataOut<dim>::type_dof_data,
                                  interpretation);
         Vector<float> subdomain(
-          nodes.get_dof_handler().get_triangulation().n_active_cells());
+          nodes.output_dof_handler().get_triangulation().n_active_cells());
         subdomain = Utilities::MPI::this_mpi_process(communicator);
         data_out.add_data_vector(subdomain, "subdomain");
         data_out.build_patches(mapping);

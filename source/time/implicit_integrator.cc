@@ -127,6 +127,7 @@ namespace mpm
     const bool                                    dynamic,
     ParameterHandler &                            prm,
     MaterialPoints<dim> &                         points,
+    const Grid<dim> &                             grid,
     const GridBasis<dim> &                        basis,
     const DirichletConditions<dim> &              dirichlet,
     const std::vector<std::unique_ptr<Material>> &materials,
@@ -135,6 +136,7 @@ namespace mpm
     TimerOutput &                                 timer,
     std::unique_ptr<MeshfreeBasis<dim>>           meshfree_basis)
     : points(points)
+    , grid(grid)
     , basis(basis)
     , dirichlet(dirichlet)
     , materials(materials)
@@ -146,7 +148,7 @@ namespace mpm
     , dof_handler(points.get_triangulation())
   {
     if (meshfree)
-      cloud = std::make_unique<NodeCloud<dim>>(points, basis, dirichlet);
+      cloud = std::make_unique<NodeCloud<dim>>(points, grid, dirichlet);
     prm.enter_subsection("Newton");
     tolerance       = prm.get_double("Tolerance");
     max_iterations  = prm.get_integer("Maximum iterations");
@@ -613,7 +615,7 @@ namespace mpm
         for (const unsigned int v : cell->vertex_indices())
           {
             const unsigned int node =
-              basis.node_of(cell->active_cell_index(), v);
+              grid.node_of(cell->active_cell_index(), v);
             if (const auto *constraint = dirichlet.constraint_of(node))
               f(cell, v, node, *constraint);
           }
@@ -662,7 +664,7 @@ namespace mpm
         for (const unsigned int v : cell->vertex_indices())
           {
             const auto *c = dirichlet.constraint_of(
-              basis.node_of(cell->active_cell_index(), v));
+              grid.node_of(cell->active_cell_index(), v));
             if (c != nullptr && c->unilateral)
               contact_vertices.emplace_back(v, c);
           }
@@ -1196,7 +1198,7 @@ namespace mpm
       start_unconstrained_residual = unconstrained_residual;
     const double start_external_force_norm = external_force_norm;
 
-    const double probe_size = 3e-9 * basis.minimum_cell_size();
+    const double probe_size = 3e-9 * grid.minimum_cell_size();
     TrilinosWrappers::MPI::Vector direction(displacement);
     for (const types::global_dof_index i : owned_dofs)
       direction[i] = probe_size * pseudo_random(i);

@@ -2,10 +2,11 @@
 #define mpm_assembly_grid_nodes_h
 
 #include <deal.II/base/partitioner.h>
-#include <deal.II/distributed/tria.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/lac/la_parallel_vector.h>
+
+#include <mpm/grid/grid.h>
 
 #include <memory>
 #include <vector>
@@ -15,13 +16,12 @@ namespace mpm
   using namespace dealii;
 
   /**
-   * The nodal values of the background grid: one vector, distributed with
-   * the grid, that holds per node the lumped mass, the velocity (momentum
-   * while it is being accumulated) and the force (acceleration after the
-   * nodal solve), interleaved so a node's values sit together in memory.
-   * deal.II provides the numbering through a DoFHandler with an
-   * FESystem of 1 + 2 dim Q1 components, which also makes the grid output a
-   * plain DataOut.
+   * The nodal values of the explicit scheme on the background grid: one
+   * vector, distributed with the grid, that holds per node the lumped mass,
+   * the velocity (momentum while it is being accumulated) and the force
+   * (acceleration after the nodal solve), interleaved so a node's values
+   * sit together in memory. Nodes are the Grid's node ids; the values of
+   * node i start at values_of(i).
    *
    * Only nodes that carry material are touched: the set of active nodes is
    * recorded while projecting and only those (plus the few nodes shared with
@@ -40,35 +40,23 @@ namespace mpm
       static constexpr unsigned int n_components = 1 + 2 * dim;
     };
 
-    explicit GridNodes(const parallel::distributed::Triangulation<dim> &tria);
+    explicit GridNodes(const Grid<dim> &grid);
 
-    /** Number the nodes and size the vector; call after the grid exists. */
+    /** Size the storage for the grid's nodes; again after the grid changed. */
     void
     setup();
 
-    const DoFHandler<dim> &
-    get_dof_handler() const
-    {
-      return dof_handler;
-    }
-
-    /** Local index (into data()) of the first value of a global dof. */
-    unsigned int
-    local_index(const types::global_dof_index global_dof) const
-    {
-      return partitioner->global_to_local(global_dof);
-    }
-
+    /** The values of a node, NodalLayout::n_components of them. */
     double *
-    data()
+    values_of(const unsigned int node)
     {
-      return values.get_values();
+      return values.get_values() + node * NodalLayout::n_components;
     }
 
     const double *
-    data() const
+    values_of(const unsigned int node) const
     {
-      return values.get_values();
+      return values.get_values() + node * NodalLayout::n_components;
     }
 
     /**
@@ -83,9 +71,9 @@ namespace mpm
     void
     mark_active(const unsigned int node)
     {
-      if (!active_flag[node / NodalLayout::n_components])
+      if (!active_flag[node])
         {
-          active_flag[node / NodalLayout::n_components] = true;
+          active_flag[node] = true;
           active_nodes.push_back(node);
         }
     }
@@ -104,20 +92,37 @@ namespace mpm
       return solve_nodes;
     }
 
+    /**
+     * The values as a vector of the FESystem of 1 + 2 dim Q1 components on
+     * output_dof_handler(), for the grid output (DataOut). Ghost values are
+     * brought up to date first.
+     */
     const LinearAlgebra::distributed::Vector<double> &
-    vector() const
+    output_vector() const
     {
+      values.update_ghost_values();
       return values;
     }
 
-  private:
-    const parallel::distributed::Triangulation<dim> &triangulation;
-    FESystem<dim>                                    fe;
-    DoFHandler<dim>                                  dof_handler;
-    std::shared_ptr<const Utilities::MPI::Partitioner> partitioner;
-    LinearAlgebra::distributed::Vector<double>         values;
+    const DoFHandler<dim> &
+    output_dof_handler() const
+    {
+      return system_dof_handler;
+    }
 
-    /** Per node (index / n_components): written by the current projection. */
+  private:
+    const Grid<dim> &grid;
+    FESystem<dim>    system_element;
+    /**
+     * The FESystem numbering of the same nodes, whose dof (node, c) is
+     * n_components * node + c (checked in setup()): deal.II numbers a
+     * vertex's components together, vertices in the same order as the
+     * scalar numbering.
+     */
+    DoFHandler<dim>                                    system_dof_handler;
+    mutable LinearAlgebra::distributed::Vector<double> values;
+
+    /** Per node: written by the current projection. */
     std::vector<bool>         active_flag;
     std::vector<unsigned int> active_nodes;
     /** Owned nodes that other ranks may add to in compress(). */

@@ -97,11 +97,13 @@ namespace mpm
     Tensor<1, dim>
     interpolate(const Support<dim> &support, const unsigned int component) const
     {
-      const double * v = nodes.data();
       Tensor<1, dim> result;
       for (unsigned int i = 0; i < support.n_nodes; ++i)
-        for (unsigned int d = 0; d < dim; ++d)
-          result[d] += support.N[i] * v[support.nodes[i] + component + d];
+        {
+          const double *v = nodes.values_of(support.nodes[i]) + component;
+          for (unsigned int d = 0; d < dim; ++d)
+            result[d] += support.N[i] * v[d];
+        }
       return result;
     }
 
@@ -109,13 +111,15 @@ namespace mpm
     Tensor<2, dim>
     velocity_gradient(const Support<dim> &support) const
     {
-      const double * v = nodes.data();
       Tensor<2, dim> L;
       for (unsigned int i = 0; i < support.n_nodes; ++i)
-        for (unsigned int a = 0; a < dim; ++a)
-          for (unsigned int b = 0; b < dim; ++b)
-            L[a][b] += v[support.nodes[i] + NodalLayout::velocity + a] *
-                       support.grad_N[i][b];
+        {
+          const double *v =
+            nodes.values_of(support.nodes[i]) + NodalLayout::velocity;
+          for (unsigned int a = 0; a < dim; ++a)
+            for (unsigned int b = 0; b < dim; ++b)
+              L[a][b] += v[a] * support.grad_N[i][b];
+        }
       return L;
     }
 

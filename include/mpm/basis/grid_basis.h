@@ -3,12 +3,11 @@
 
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
-#include <deal.II/distributed/tria.h>
 
-#include <mpm/assembly/grid_nodes.h>
 #include <mpm/basis/support.h>
+#include <mpm/grid/grid.h>
 
-#include <vector>
+#include <array>
 
 namespace mpm
 {
@@ -17,8 +16,8 @@ namespace mpm
   /**
    * Q1 shape functions of the background cell that holds a point, evaluated
    * from the point's reference coordinates. Evaluating through FEValues at
-   * every point is slow; here a cell's node indices and geometry are cached
-   * once, and a support costs a few dozen flops: the tensor-product values,
+   * every point is slow; here the Grid's cached node ids and vertices of the
+   * cell give a support in a few dozen flops: the tensor-product values,
    * and the gradients through the inverse Jacobian of the bilinear
    * (trilinear) cell map, which is diagonal on axis-aligned cells.
    */
@@ -26,35 +25,18 @@ namespace mpm
   class GridBasis
   {
   public:
-    static constexpr unsigned int n_vertices = 1u << dim;
+    static constexpr unsigned int n_vertices = Grid<dim>::n_vertices;
 
-    /** Cache node indices and geometry of every locally owned cell. */
-    void
-    reinit(const GridNodes<dim> &nodes);
-
-    /** True if every cell of the grid is an axis-aligned box. */
-    bool
-    grid_is_cartesian() const
-    {
-      return all_cells_cartesian;
-    }
-
-    /**
-     * Smallest edge of any cell, over all ranks: the length that limits the
-     * time step and the distance a point may move in one.
-     */
-    double
-    minimum_cell_size() const
-    {
-      return min_cell_size;
-    }
+    explicit GridBasis(const Grid<dim> &grid)
+      : grid(grid)
+    {}
 
     void
     evaluate(const unsigned int active_cell_index,
              const Point<dim> & reference_point,
              Support<dim> &     support) const
     {
-      const CellData &cell = cells[active_cell_index];
+      const CellGeometry &cell = grid.cell_geometry(active_cell_index);
       support.resize(n_vertices);
       std::array<double, n_vertices>         values;
       std::array<Tensor<1, dim>, n_vertices> grad_ref;
@@ -80,13 +62,6 @@ namespace mpm
         }
     }
 
-    /** GridNodes index of vertex v of a locally owned cell. */
-    unsigned int
-    node_of(const unsigned int active_cell_index, const unsigned int v) const
-    {
-      return cells[active_cell_index].nodes[v];
-    }
-
     /**
      * det J of the cell map at a reference point: the volume a point there
      * stands for, per unit reference volume.
@@ -98,11 +73,12 @@ namespace mpm
       std::array<double, n_vertices>         values;
       std::array<Tensor<1, dim>, n_vertices> grad_ref;
       reference_values(reference_point, values, grad_ref);
-      return determinant(jacobian(cells[active_cell_index], grad_ref));
+      return determinant(
+        jacobian(grid.cell_geometry(active_cell_index), grad_ref));
     }
 
   private:
-    struct CellData;
+    using CellGeometry = typename Grid<dim>::CellGeometry;
 
     /** Q1 values and reference gradients, vertices in deal.II's order. */
     static void
@@ -128,7 +104,7 @@ namespace mpm
     }
 
     static Tensor<2, dim>
-    jacobian(const CellData &                              cell,
+    jacobian(const CellGeometry &                          cell,
              const std::array<Tensor<1, dim>, n_vertices> &grad_ref)
     {
       Tensor<2, dim> J;
@@ -137,18 +113,7 @@ namespace mpm
       return J;
     }
 
-    struct CellData
-    {
-      std::array<unsigned int, n_vertices> nodes;
-      std::array<Tensor<1, dim>, n_vertices> vertices;
-      Tensor<1, dim>                         inverse_h;
-      bool                                   is_cartesian = false;
-    };
-
-    /** Indexed by active cell index; only locally owned entries are set. */
-    std::vector<CellData> cells;
-    bool                  all_cells_cartesian = true;
-    double                min_cell_size       = 0.;
+    const Grid<dim> &grid;
   };
 } // namespace mpm
 

@@ -6,8 +6,8 @@
 
 #include <boost/serialization/vector.hpp>
 
-#include <mpm/basis/grid_basis.h>
 #include <mpm/boundary/dirichlet_conditions.h>
+#include <mpm/grid/grid.h>
 #include <mpm/points/material_points.h>
 
 #include <vector>
@@ -35,7 +35,7 @@ namespace mpm
     using Condition = typename DirichletConditions<dim>::Constraint;
 
     NodeCloud(const MaterialPoints<dim> &      points,
-              const GridBasis<dim> &           basis,
+              const Grid<dim> &                grid,
               const DirichletConditions<dim> & dirichlet);
 
     unsigned int

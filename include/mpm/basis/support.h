@@ -15,9 +15,9 @@ namespace mpm
    * space. The assembly sees nothing else, so MPM (GridBasis) and the
    * Galerkin meshfree method (MeshfreeBasis) feed the same code.
    *
-   * `nodes` holds, for GridBasis, the local index of each node's first
-   * nodal value (see GridNodes::NodalLayout) and, for MeshfreeBasis, the
-   * index of the node in the cloud.
+   * `nodes` holds node ids: for GridBasis the Grid's (rank-local) node ids,
+   * for MeshfreeBasis the index of the node in the cloud. Nodal storage
+   * turns ids into offsets.
    *
    * A grid support has 2^dim nodes, a meshfree one a few dozen; the arrays
    * only grow, so a Support reused point after point allocates only at the

@@ -4,8 +4,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/tensor.h>
 
-#include <mpm/assembly/grid_nodes.h>
-#include <mpm/grid/background_grid.h>
+#include <mpm/grid/grid.h>
 
 #include <algorithm>
 #include <string>
@@ -33,13 +32,18 @@ namespace mpm
     static void
     declare_parameters(ParameterHandler &prm);
 
-    /** Parse the `Boundary conditions` subsection at top level. */
-    DirichletConditions(ParameterHandler &         prm,
-                        const BackgroundGrid<dim> &grid);
+    /**
+     * Parse the `Boundary conditions` subsection at top level; the names
+     * are the grid's boundary names.
+     */
+    DirichletConditions(ParameterHandler &prm, const Grid<dim> &grid);
 
-    /** Find the constrained nodes of all locally relevant cells. */
+    /**
+     * Find the constrained nodes of all locally relevant cells of the
+     * grid; again after the grid changed.
+     */
     void
-    setup(const GridNodes<dim> &nodes);
+    setup();
 
     /**
      * Remove the constrained components of a nodal vector (velocity or
@@ -48,8 +52,7 @@ namespace mpm
     void
     apply(const unsigned int node, double *vector_at_node) const
     {
-      const int c = constraint_of_node[node / GridNodes<dim>::NodalLayout::
-                                                n_components];
+      const int c = constraint_of_node[node];
       if (c < 0)
         return;
       const Constraint &constraint = constraints[c];
@@ -111,16 +114,17 @@ namespace mpm
                                WallKind::none;
     }
 
-    /** The constraint of a node (a GridNodes local index), or nullptr. */
+    /** The constraint of a node (a Grid node id), or nullptr. */
     const Constraint *
     constraint_of(const unsigned int node) const
     {
-      const int c = constraint_of_node[node / GridNodes<dim>::NodalLayout::
-                                                n_components];
+      const int c = constraint_of_node[node];
       return c < 0 ? nullptr : &constraints[c];
     }
 
   private:
+    const Grid<dim> &grid;
+
     std::vector<types::boundary_id> fixed_ids;
     std::vector<types::boundary_id> slip_ids;
     std::vector<types::boundary_id> contact_ids;
@@ -128,6 +132,7 @@ namespace mpm
     std::vector<std::string>        slip_names;
     std::vector<std::string>        contact_names;
 
+    /** Per node id: index into `constraints`, or -1. */
     std::vector<int>        constraint_of_node;
     std::vector<Constraint> constraints;
   };

@@ -5,7 +5,6 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/timer.h>
 #include <deal.II/distributed/tria.h>
-#include <deal.II/fe/mapping.h>
 
 #include <mpm/assembly/grid_nodes.h>
 #include <mpm/assembly/grid_transfer.h>
@@ -14,7 +13,8 @@
 #include <mpm/boundary/dirichlet_conditions.h>
 #include <mpm/boundary/point_loads.h>
 #include <mpm/core/checkpoint.h>
-#include <mpm/grid/background_grid.h>
+#include <mpm/bodies/point_seeder.h>
+#include <mpm/grid/grid.h>
 #include <mpm/materials/material.h>
 #include <mpm/output/time_series.h>
 #include <mpm/output/vtu_output.h>
@@ -164,15 +164,14 @@ namespace mpm
     /** Progress rewrites one line on a terminal; else a line per 10 %. */
     const bool         progress_in_place;
 
-    parallel::distributed::Triangulation<dim> triangulation;
-    std::unique_ptr<Mapping<dim>>             mapping;
-    std::unique_ptr<BackgroundGrid<dim>>      grid;
-    GridNodes<dim>                            nodes;
-    GridBasis<dim>                            basis;
+    std::unique_ptr<Grid<dim>>                grid;
+    std::unique_ptr<GridNodes<dim>>           nodes;
+    std::unique_ptr<GridBasis<dim>>           basis;
     std::unique_ptr<DirichletConditions<dim>> dirichlet;
     std::vector<std::unique_ptr<Material>>    materials;
     std::vector<Body<dim>>                    bodies;
     std::unique_ptr<MaterialPoints<dim>>      points;
+    std::unique_ptr<PointSeeder<dim>>         seeder;
     std::unique_ptr<PointLoads<dim>>          loads;
     std::unique_ptr<GridTransfer<dim>>        transfer;
     std::unique_ptr<ExplicitIntegrator<dim>>  integrator;

@@ -7,9 +7,6 @@
 
 #include <boost/serialization/split_member.hpp>
 
-#include <mpm/basis/grid_basis.h>
-#include <mpm/bodies/body.h>
-#include <mpm/materials/material.h>
 #include <mpm/points/point_layout.h>
 
 #include <memory>
@@ -22,7 +19,7 @@ namespace mpm
   /**
    * The material points of a scene, stored in a Particles::ParticleHandler
    * with the properties of PointLayout. Points move with the cells across
-   * ranks when they are sorted.
+   * ranks when they are sorted. PointSeeder puts them in.
    */
   template <int dim>
   class MaterialPoints
@@ -40,30 +37,6 @@ namespace mpm
                    const Mapping<dim> &                             mapping,
                    const std::vector<std::string> &internal_variable_names,
                    const bool                      implicit_fields);
-
-    /**
-     * Fill every locally owned cell with the points of the bodies that
-     * contain them, at the positions of the body's point placement (a
-     * quadrature on the reference cell), each with volume det J times its
-     * weight (exact for bilinear cells). Ids are unique across ranks.
-     */
-    void
-    seed(const std::vector<Body<dim>> &                bodies,
-         const std::vector<std::unique_ptr<Material>> &materials,
-         const GridBasis<dim> &                        basis);
-
-    /**
-     * Start the points of geostatic bodies under the K0 stress: vertical
-     * stress -rho |g| depth along gravity, depth below the top of the body
-     * (its highest point plus half that point's extent), K0 times it
-     * across. Sets the stress, the law's internal state and the stored
-     * energy of each point.
-     */
-    void
-    apply_geostatic_stress(
-      const std::vector<Body<dim>> &                bodies,
-      const std::vector<std::unique_ptr<Material>> &materials,
-      const Tensor<1, dim> &                        gravity);
 
     /**
      * Put every point into the cell (and onto the rank) that contains its

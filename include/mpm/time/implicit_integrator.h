@@ -17,6 +17,7 @@
 #include <boost/serialization/set.hpp>
 
 #include <mpm/basis/grid_basis.h>
+#include <mpm/grid/grid.h>
 #include <mpm/basis/meshfree_basis.h>
 #include <mpm/basis/node_cloud.h>
 #include <mpm/boundary/dirichlet_conditions.h>
@@ -65,6 +66,7 @@ namespace mpm
     ImplicitIntegrator(const bool                                    dynamic,
                        ParameterHandler &                            prm,
                        MaterialPoints<dim> &                         points,
+                       const Grid<dim> &                             grid,
                        const GridBasis<dim> &                        basis,
                        const DirichletConditions<dim> &              dirichlet,
                        const std::vector<std::unique_ptr<Material>> &materials,
@@ -343,6 +345,7 @@ namespace mpm
     update_points();
 
     MaterialPoints<dim> &                         points;
+    const Grid<dim> &                             grid;
     const GridBasis<dim> &                        basis;
     const DirichletConditions<dim> &              dirichlet;
     const std::vector<std::unique_ptr<Material>> &materials;
@@ -408,7 +411,8 @@ namespace mpm
     /**
      * Contact boundaries: f_ext - f_int - inertia before constraints (whose
      * negative is the wall force at a held node), and the contact nodes
-     * (GridBasis node numbers, stable over the run) that hold the material.
+     * (Grid node ids, stable while the grid does not change) that hold the
+     * material.
      * A step starts from the previous step's set.
      */
     TrilinosWrappers::MPI::Vector      unconstrained_residual;

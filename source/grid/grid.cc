@@ -1,20 +1,23 @@
 #include <deal.II/base/exceptions.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/mapping_cartesian.h>
+#include <deal.II/fe/mapping_q.h>
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_in.h>
-#include <deal.II/grid/grid_tools.h>
 
 #include <mpm/core/input_error.h>
-#include <mpm/grid/background_grid.h>
+#include <mpm/grid/grid.h>
 
 #include <fstream>
-#include <set>
+#include <limits>
 #include <sstream>
 
 namespace mpm
 {
   template <int dim>
   void
-  BackgroundGrid<dim>::declare_parameters(ParameterHandler &prm)
+  Grid<dim>::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Grid");
     prm.declare_entry(
@@ -55,7 +58,10 @@ namespace mpm
 
 
   template <int dim>
-  BackgroundGrid<dim>::BackgroundGrid(ParameterHandler &prm)
+  Grid<dim>::Grid(ParameterHandler &prm, const MPI_Comm communicator)
+    : triangulation(communicator)
+    , node_element(1)
+    , node_dof_handler(triangulation)
   {
     prm.enter_subsection("Grid");
     generator     = prm.get("Generator");
@@ -75,8 +81,7 @@ namespace mpm
 
   template <int dim>
   void
-  BackgroundGrid<dim>::create(
-    parallel::distributed::Triangulation<dim> &tria) const
+  Grid<dim>::create()
   {
     if (!mesh_file.empty())
       {
@@ -84,7 +89,7 @@ namespace mpm
         if (!in)
           throw InputError("Grid/Mesh file = '" + mesh_file +
                            "' cannot be opened.");
-        GridIn<dim> grid_in(tria);
+        GridIn<dim> grid_in(triangulation);
         try
           {
             grid_in.read_msh(in);
@@ -102,7 +107,7 @@ namespace mpm
       {
         try
           {
-            GridGenerator::generate_from_name_and_arguments(tria,
+            GridGenerator::generate_from_name_and_arguments(triangulation,
                                                             generator,
                                                             arguments);
           }
@@ -115,15 +120,103 @@ namespace mpm
                              "' does not make a grid: " + info.str());
           }
       }
-    tria.refine_global(n_refinements);
+    triangulation.refine_global(n_refinements);
+    update();
+  }
+
+
+
+  template <int dim>
+  void
+  Grid<dim>::refine_globally(const unsigned int n)
+  {
+    triangulation.refine_global(n);
+    update();
+  }
+
+
+
+  template <int dim>
+  void
+  Grid<dim>::update()
+  {
+    node_dof_handler.distribute_dofs(node_element);
+    IndexSet relevant;
+    DoFTools::extract_locally_relevant_dofs(node_dof_handler, relevant);
+    partitioner = std::make_shared<Utilities::MPI::Partitioner>(
+      node_dof_handler.locally_owned_dofs(),
+      relevant,
+      triangulation.get_communicator());
+    hanging_nodes.clear();
+    hanging_nodes.reinit(relevant);
+    DoFTools::make_hanging_node_constraints(node_dof_handler, hanging_nodes);
+    hanging_nodes.close();
+
+    cells.assign(triangulation.n_active_cells(), CellGeometry());
+    bool   cartesian = true;
+    double min_edge  = std::numeric_limits<double>::max();
+    for (const auto &cell : node_dof_handler.active_cell_iterators())
+      {
+        if (!cell->is_locally_owned())
+          continue;
+        CellGeometry &data = cells[cell->active_cell_index()];
+        for (unsigned int v = 0; v < n_vertices; ++v)
+          {
+            data.nodes[v]    = node_of_dof(cell->vertex_dof_index(v, 0));
+            data.vertices[v] = cell->vertex(v);
+          }
+
+        // Axis-aligned box: vertex v = vertex 0 + sum over the set bits d of
+        // v of h_d e_d.
+        Tensor<1, dim> h;
+        for (unsigned int d = 0; d < dim; ++d)
+          h[d] = cell->vertex(1u << d)[d] - cell->vertex(0)[d];
+        bool is_box = true;
+        for (unsigned int v = 0; v < n_vertices; ++v)
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              const double expected =
+                cell->vertex(0)[d] + ((v & (1u << d)) ? h[d] : 0.);
+              if (std::abs(cell->vertex(v)[d] - expected) >
+                  1e-12 * cell->diameter())
+                is_box = false;
+            }
+        for (unsigned int d = 0; d < dim; ++d)
+          if (!(h[d] > 0.))
+            is_box = false;
+        data.is_cartesian = is_box;
+        if (is_box)
+          for (unsigned int d = 0; d < dim; ++d)
+            data.inverse_h[d] = 1. / h[d];
+        cartesian = cartesian && is_box;
+        min_edge  = std::min(min_edge, cell->minimum_vertex_distance());
+      }
+
+    const MPI_Comm comm = triangulation.get_communicator();
+    all_cells_cartesian = Utilities::MPI::min(cartesian ? 1 : 0, comm) == 1;
+    min_cell_size       = Utilities::MPI::min(min_edge, comm);
+
+    // Keep the mapping object when its kind stays: the particle handler
+    // holds a reference to it.
+    const bool mapping_is_cartesian =
+      dynamic_cast<const MappingCartesian<dim> *>(mapping.get()) != nullptr;
+    if (!mapping || mapping_is_cartesian != all_cells_cartesian)
+      {
+        if (all_cells_cartesian)
+          mapping = std::make_unique<MappingCartesian<dim>>();
+        else
+          mapping = std::make_unique<MappingQ<dim>>(1);
+      }
+
+    changed();
   }
 
 
 
   template <int dim>
   types::boundary_id
-  BackgroundGrid<dim>::boundary_id(const std::string &name,
-                                   const std::string &entry) const
+  Grid<dim>::boundary_id(const std::string &name,
+                         const std::string &entry) const
   {
     const auto found = boundary_names.find(name);
     if (found == boundary_names.end())
@@ -141,6 +234,6 @@ namespace mpm
 
 
 
-  template class BackgroundGrid<2>;
-  template class BackgroundGrid<3>;
+  template class Grid<2>;
+  template class Grid<3>;
 } // namespace mpm

@@ -1,0 +1,226 @@
+#ifndef mpm_grid_grid_h
+#define mpm_grid_grid_h
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/partitioner.h>
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+#include <deal.II/distributed/tria.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/mapping.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/lac/affine_constraints.h>
+
+#include <boost/signals2/signal.hpp>
+
+#include <array>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace mpm
+{
+  using namespace dealii;
+
+  /**
+   * The background grid of a scene and the identity of its nodes.
+   *
+   * The grid is described in the prm file: one of deal.II's GridGenerator
+   * functions by name and arguments, or a gmsh file; boundary ids get names,
+   * which the boundary conditions use. It lives on a
+   * parallel::distributed::Triangulation (p4est).
+   *
+   * A node is a vertex of the grid. Nodes are numbered by a scalar Q1
+   * DoFHandler: a node id is the rank-local index of its degree of freedom
+   * (the locally owned nodes first, then the ghost nodes of the ghost
+   * cells), the same for every basis, condition and nodal storage. What is
+   * stored per node, and where, is the business of the storage, which turns
+   * ids into offsets.
+   *
+   * The geometry of each locally owned cell (its node ids, vertices and, on
+   * an axis-aligned box, its inverse edge lengths) is cached here once, for
+   * the Q1 basis and anyone else who asks "which nodes does this cell
+   * have".
+   *
+   * Whatever changes the grid (a refinement, a moved vertex) goes through
+   * this class, which numbers the nodes again and then fires `changed`, so
+   * that everything keyed by node ids can rebuild.
+   */
+  template <int dim>
+  class Grid
+  {
+  public:
+    static constexpr unsigned int n_vertices = 1u << dim;
+
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    /** Parse the `Grid` subsection (the handler is at top level). */
+    Grid(ParameterHandler &prm, const MPI_Comm communicator);
+
+    /**
+     * Build the coarse grid, refine it, choose the mapping and number the
+     * nodes. Bad input (a missing mesh file, a generator that fails)
+     * throws InputError.
+     */
+    void
+    create();
+
+    /** Refine every cell `n` times; then number the nodes and fire `changed`. */
+    void
+    refine_globally(const unsigned int n);
+
+    /**
+     * Move every vertex x to transformation(x); then number the nodes and
+     * fire `changed`. The mapping is chosen again, so this must happen
+     * before points are put into the grid.
+     */
+    template <typename Transformation>
+    void
+    transform(const Transformation &transformation)
+    {
+      GridTools::transform(transformation, triangulation);
+      update();
+    }
+
+    /**
+     * Fired after the grid changed and its nodes were numbered again: node
+     * ids and cell geometry are those of the new grid.
+     */
+    boost::signals2::signal<void()> changed;
+
+    /**
+     * The boundary id of a named boundary; `entry` names the parameter that
+     * used the name, for the message if it is unknown.
+     */
+    types::boundary_id
+    boundary_id(const std::string &name, const std::string &entry) const;
+
+    const parallel::distributed::Triangulation<dim> &
+    get_triangulation() const
+    {
+      return triangulation;
+    }
+
+    MPI_Comm
+    get_communicator() const
+    {
+      return triangulation.get_communicator();
+    }
+
+    /**
+     * MappingCartesian when every cell is an axis-aligned box (fast point
+     * location), MappingQ(1) otherwise (gmsh grids).
+     */
+    const Mapping<dim> &
+    get_mapping() const
+    {
+      return *mapping;
+    }
+
+    /** True if every cell of the grid is an axis-aligned box. */
+    bool
+    is_cartesian() const
+    {
+      return all_cells_cartesian;
+    }
+
+    /**
+     * Smallest edge of any cell, over all ranks: the length that limits the
+     * time step and the distance a point may move in one.
+     */
+    double
+    minimum_cell_size() const
+    {
+      return min_cell_size;
+    }
+
+    /** The scalar Q1 numbering of the nodes. */
+    const DoFHandler<dim> &
+    node_numbering() const
+    {
+      return node_dof_handler;
+    }
+
+    /** Owned and ghost nodes of this rank, for distributed nodal storage. */
+    const std::shared_ptr<const Utilities::MPI::Partitioner> &
+    node_partitioner() const
+    {
+      return partitioner;
+    }
+
+    /** Node ids on this rank run from 0 to n_nodes(): owned, then ghost. */
+    unsigned int
+    n_nodes() const
+    {
+      return partitioner->locally_owned_size() + partitioner->n_ghost_indices();
+    }
+
+    /** The node id of a global index of node_numbering(). */
+    unsigned int
+    node_of_dof(const types::global_dof_index global_index) const
+    {
+      return partitioner->global_to_local(global_index);
+    }
+
+    /** The node id of vertex v of a locally owned cell. */
+    unsigned int
+    node_of(const unsigned int active_cell_index, const unsigned int v) const
+    {
+      return cells[active_cell_index].nodes[v];
+    }
+
+    /**
+     * Constraints of the nodes that hang on the faces of coarser cells, as
+     * a scalar field on node_numbering() (empty on a uniform grid).
+     */
+    const AffineConstraints<double> &
+    hanging_node_constraints() const
+    {
+      return hanging_nodes;
+    }
+
+    /** What the Q1 basis needs of a locally owned cell. */
+    struct CellGeometry
+    {
+      std::array<unsigned int, n_vertices>   nodes;
+      std::array<Tensor<1, dim>, n_vertices> vertices;
+      /** 1 / edge length per direction; set on axis-aligned boxes only. */
+      Tensor<1, dim> inverse_h;
+      bool           is_cartesian = false;
+    };
+
+    const CellGeometry &
+    cell_geometry(const unsigned int active_cell_index) const
+    {
+      return cells[active_cell_index];
+    }
+
+  private:
+    /** Number the nodes, cache the cells, choose the mapping. */
+    void
+    update();
+
+    std::string                               generator;
+    std::string                               arguments;
+    std::string                               mesh_file;
+    unsigned int                              n_refinements;
+    std::map<std::string, types::boundary_id> boundary_names;
+
+    parallel::distributed::Triangulation<dim> triangulation;
+    std::unique_ptr<Mapping<dim>>             mapping;
+    FE_Q<dim>                                 node_element;
+    DoFHandler<dim>                           node_dof_handler;
+    std::shared_ptr<const Utilities::MPI::Partitioner> partitioner;
+    AffineConstraints<double>                          hanging_nodes;
+
+    /** Indexed by active cell index; only locally owned entries are set. */
+    std::vector<CellGeometry> cells;
+    bool                      all_cells_cartesian = true;
+    double                    min_cell_size       = 0.;
+  };
+} // namespace mpm
+
+#endif

@@ -1,0 +1,201 @@
+#include <deal.II/base/mpi.h>
+
+#include <mpm/bodies/point_seeder.h>
+#include <mpm/core/input_error.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+namespace mpm
+{
+  template <int dim>
+  PointSeeder<dim>::PointSeeder(const Grid<dim> &grid)
+    : grid(grid)
+    , basis(grid)
+  {}
+
+
+
+  template <int dim>
+  void
+  PointSeeder<dim>::seed(
+    const std::vector<Body<dim>> &                bodies,
+    const std::vector<std::unique_ptr<Material>> &materials,
+    MaterialPoints<dim> &                         points)
+  {
+    using Layout = PointLayout<dim>;
+    const Mapping<dim> &mapping = grid.get_mapping();
+    struct Candidate
+    {
+      Point<dim>                                       x;
+      Point<dim>                                       reference;
+      typename Triangulation<dim>::active_cell_iterator cell;
+      double                                           volume;
+      Tensor<1, dim>                                   size;
+      unsigned int                                     body;
+    };
+    std::vector<Candidate> candidates;
+
+    for (const auto &cell : grid.get_triangulation().active_cell_iterators())
+      {
+        if (!cell->is_locally_owned())
+          continue;
+        for (unsigned int b = 0; b < bodies.size(); ++b)
+          {
+            const Quadrature<dim> &placement = bodies[b].point_placement();
+            for (unsigned int k = 0; k < placement.size(); ++k)
+              {
+                const Point<dim> &reference = placement.point(k);
+                const Point<dim>  x =
+                  mapping.transform_unit_to_real_cell(cell, reference);
+                if (!bodies[b].contains(x))
+                  continue;
+                bool owned_by_earlier_body = false;
+                for (unsigned int e = 0; e < b; ++e)
+                  if (bodies[e].contains(x))
+                    owned_by_earlier_body = true;
+                if (owned_by_earlier_body)
+                  continue;
+                const double volume =
+                  basis.volume_factor(cell->active_cell_index(), reference) *
+                  placement.weight(k);
+                // The cell's extent times the 1D weight in each direction,
+                // scaled so that the edges multiply to the volume (exact on
+                // a Cartesian cell).
+                Tensor<1, dim> size;
+                double         box = 1.;
+                for (unsigned int d = 0; d < dim; ++d)
+                  {
+                    size[d] = cell->extent_in_direction(d) *
+                              bodies[b].placement_weight_1d(k, d);
+                    box *= size[d];
+                  }
+                size *= std::pow(volume / box, 1. / dim);
+                candidates.push_back({x, reference, cell, volume, size, b});
+              }
+          }
+      }
+
+    const MPI_Comm      comm     = grid.get_communicator();
+    const std::uint64_t n_local  = candidates.size();
+    std::uint64_t       first_id = 0;
+    MPI_Exscan(&n_local, &first_id, 1, MPI_UINT64_T, MPI_SUM, comm);
+    if (Utilities::MPI::this_mpi_process(comm) == 0)
+      first_id = 0; // MPI_Exscan leaves rank 0's result undefined
+    first_id += next_id;
+    next_id += Utilities::MPI::sum(n_local, comm);
+
+    auto &              handler = points.handler();
+    std::vector<double> properties(handler.n_properties_per_particle(), 0.);
+    for (unsigned int i = 0; i < candidates.size(); ++i)
+      {
+        const Candidate &c        = candidates[i];
+        const Material & material = *materials[bodies[c.body].material_index()];
+        std::fill(properties.begin(), properties.end(), 0.);
+        properties[Layout::mass]             = material.density() * c.volume;
+        properties[Layout::reference_volume] = c.volume;
+        for (unsigned int d = 0; d < dim; ++d)
+          properties[Layout::reference_size + d] = c.size[d];
+        const Tensor<1, dim> v               = bodies[c.body].initial_velocity(c.x);
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            properties[Layout::velocity + d] = v[d];
+            properties[Layout::deformation_gradient + d * dim + d] = 1.;
+          }
+        properties[Layout::body_id]     = c.body;
+        properties[Layout::material_id] = bodies[c.body].material_index();
+        Layout::set_stress(ArrayView<double>(properties.data(),
+                                             properties.size()),
+                           material.reference_stress());
+        handler.insert_particle(
+          c.x,
+          c.reference,
+          first_id + i,
+          c.cell,
+          ArrayView<const double>(properties.data(), properties.size()));
+      }
+    handler.update_cached_numbers();
+  }
+
+
+
+  template <int dim>
+  void
+  PointSeeder<dim>::apply_geostatic_stress(
+    const std::vector<Body<dim>> &                bodies,
+    const std::vector<std::unique_ptr<Material>> &materials,
+    const Tensor<1, dim> &                        gravity,
+    MaterialPoints<dim> &                         points) const
+  {
+    using Layout = PointLayout<dim>;
+    bool any = false;
+    for (const Body<dim> &body : bodies)
+      any = any || body.geostatic();
+    if (!any)
+      return;
+    if (gravity.norm() == 0.)
+      throw InputError("Bodies: Initial stress = geostatic needs a non-zero "
+                       "Gravity.");
+    const Tensor<1, dim> down = gravity / gravity.norm();
+
+    // The top of each body: the largest height -down.x, plus half the
+    // point's extent along gravity.
+    std::vector<double> top(bodies.size(),
+                            -std::numeric_limits<double>::max());
+    for (const auto &particle : points.handler())
+      {
+        const ArrayView<const double> p = particle.get_properties();
+        double                        half_extent = 0.;
+        for (unsigned int d = 0; d < dim; ++d)
+          half_extent += 0.5 * std::abs(down[d]) * p[Layout::reference_size + d];
+        double &body_top = top[static_cast<unsigned int>(p[Layout::body_id])];
+        body_top =
+          std::max(body_top, -(down * particle.get_location()) + half_extent);
+      }
+    Utilities::MPI::max(top, points.get_communicator(), top);
+
+    Tensor<1, 3> down_3d;
+    for (unsigned int d = 0; d < dim; ++d)
+      down_3d[d] = down[d];
+    const SymmetricTensor<2, 3> vertical =
+      symmetrize(outer_product(down_3d, down_3d));
+    // A law can refuse the stress on one rank only: collect, then throw on
+    // every rank.
+    std::string refusal;
+    for (auto &particle : points.handler())
+      {
+        const ArrayView<double> p    = particle.get_properties();
+        const unsigned int      body = static_cast<unsigned int>(p[Layout::body_id]);
+        if (!bodies[body].geostatic() || !refusal.empty())
+          continue;
+        const Material &material =
+          *materials[static_cast<unsigned int>(p[Layout::material_id])];
+        const double depth = top[body] + down * particle.get_location();
+        const double sigma_v = -material.density() * gravity.norm() * depth;
+        const SymmetricTensor<2, 3> stress =
+          bodies[body].k0() * sigma_v * (unit_symmetric_tensor<3>() - vertical) +
+          sigma_v * vertical;
+        Layout::set_stress(p, stress);
+        try
+          {
+            p[Layout::work_density] = material.initialize_stress(
+              stress,
+              ArrayView<double>(&p[Layout::internal_variables],
+                                material.n_internal_variables()),
+              "Bodies/" + bodies[body].name() + "/Initial stress = geostatic");
+          }
+        catch (const std::exception &error)
+          {
+            refusal = error.what();
+          }
+      }
+    throw_input_error_on_every_rank(refusal, points.get_communicator());
+  }
+
+
+
+  template class PointSeeder<2>;
+  template class PointSeeder<3>;
+} // namespace mpm
