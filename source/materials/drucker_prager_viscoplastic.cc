@@ -113,4 +113,12 @@ namespace mpm
     stress = returned_deviator - p * unit_symmetric_tensor<3>();
     internal_variables[0] += de;
   }
+
+
+
+  MPM_REGISTER_MATERIAL(DruckerPragerViscoplastic,
+                        "Drucker-Prager viscoplastic",
+                        "Wieckowski's (2004) cohesionless Perzyna law with "
+                        "the Jaumann rate (its subsection).",
+                        &DruckerPragerViscoplastic::declare_parameters)
 } // namespace mpm

@@ -41,4 +41,12 @@ namespace mpm
                                      old_stress,
                                      old_internal_variables);
   }
+
+
+
+  MPM_REGISTER_MATERIAL(Hencky,
+                        "Hencky",
+                        "hyperelastic, Kirchhoff stress linear in the "
+                        "logarithmic strain.",
+                        nullptr)
 } // namespace mpm

@@ -58,4 +58,12 @@ namespace mpm
                                      old_stress,
                                      old_internal_variables);
   }
+
+
+
+  MPM_REGISTER_MATERIAL(LinearElastic,
+                        "linear elastic",
+                        "hypoelastic, integrated with the Jaumann stress "
+                        "rate as in Wieckowski (2004).",
+                        nullptr)
 } // namespace mpm

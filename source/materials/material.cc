@@ -1,41 +1,53 @@
 #include <mpm/core/input_error.h>
-#include <mpm/materials/drucker_prager_viscoplastic.h>
-#include <mpm/materials/hencky.h>
-#include <mpm/materials/linear_elastic.h>
 #include <mpm/materials/material.h>
-#include <mpm/materials/mohr_coulomb.h>
-#include <mpm/materials/neo_hookean.h>
-#include <mpm/materials/von_mises.h>
-#include <mpm/materials/wieckowski_granular.h>
 
 #include <cmath>
+#include <map>
 
 namespace mpm
 {
+  namespace
+  {
+    /**
+     * The registered laws by Model name. A function's static, so that it
+     * exists before the first law registers itself, whichever file's
+     * statics run first.
+     */
+    std::map<std::string, Material::Law> &
+    registered_laws()
+    {
+      static std::map<std::string, Material::Law> laws;
+      return laws;
+    }
+  } // namespace
+
+
+
+  bool
+  Material::register_law(const std::string &model, const Law &law)
+  {
+    const bool added = registered_laws().emplace(model, law).second;
+    AssertThrow(added,
+                ExcMessage("Two material laws are registered as '" + model +
+                           "'."));
+    return true;
+  }
+
+
+
   void
   Material::declare_parameters(ParameterHandler &prm)
   {
+    std::string names, documentation = "Constitutive law.";
+    for (const auto &[model, law] : registered_laws())
+      {
+        names += (names.empty() ? "" : "|") + model;
+        documentation += " '" + model + "': " + law.description;
+      }
     prm.declare_entry("Model",
                       "linear elastic",
-                      Patterns::Selection("linear elastic|neo-Hookean|Hencky|"
-                                          "Mohr-Coulomb|von Mises|"
-                                          "Drucker-Prager viscoplastic|"
-                                          "Wieckowski granular"),
-                      "Constitutive law. 'linear elastic': hypoelastic, "
-                      "integrated with the Jaumann stress rate as in "
-                      "Wieckowski (2004). 'neo-Hookean': compressible "
-                      "hyperelastic, sigma = (mu (b - I) + lambda ln(J) I)/J. "
-                      "'Hencky': hyperelastic, Kirchhoff stress linear in the "
-                      "logarithmic strain. 'Mohr-Coulomb' and 'von Mises': "
-                      "elastoplastic at finite strain with Hencky elasticity "
-                      "(subsections of the same names). 'Drucker-Prager "
-                      "viscoplastic': Wieckowski's (2004) cohesionless "
-                      "Perzyna law with the Jaumann rate (its subsection). "
-                      "'Wieckowski granular': his law for loose fill, eq. "
-                      "(24): pressure exponential in the volume change plus "
-                      "bulk viscosity, shear modulus proportional to the "
-                      "pressure, deviator as 'Drucker-Prager viscoplastic' "
-                      "(both subsections; Young's modulus is not used).");
+                      Patterns::Selection(names),
+                      documentation);
     prm.declare_entry("Density",
                       "1000",
                       Patterns::Double(0.),
@@ -48,10 +60,9 @@ namespace mpm
                       "0.3",
                       Patterns::Double(-1., 0.5),
                       "Poisson's ratio nu, -1 < nu < 0.5.");
-    MohrCoulomb::declare_parameters(prm);
-    VonMises::declare_parameters(prm);
-    DruckerPragerViscoplastic::declare_parameters(prm);
-    WieckowskiGranular::declare_parameters(prm);
+    for (const auto &entry : registered_laws())
+      if (entry.second.declare_parameters != nullptr)
+        entry.second.declare_parameters(prm);
   }
 
 
@@ -62,26 +73,16 @@ namespace mpm
                    const std::string &section_path)
   {
     const std::string model = prm.get("Model");
-    if (model == "linear elastic")
-      return std::make_unique<LinearElastic>(prm, name, section_path);
-    if (model == "neo-Hookean")
-      return std::make_unique<NeoHookean>(prm, name, section_path);
-    if (model == "Hencky")
-      return std::make_unique<Hencky>(prm, name, section_path);
-    if (model == "Mohr-Coulomb")
-      return std::make_unique<MohrCoulomb>(prm, name, section_path);
-    if (model == "von Mises")
-      return std::make_unique<VonMises>(prm, name, section_path);
-    if (model == "Drucker-Prager viscoplastic")
-      return std::make_unique<DruckerPragerViscoplastic>(prm,
-                                                         name,
-                                                         section_path);
-    if (model == "Wieckowski granular")
-      return std::make_unique<WieckowskiGranular>(prm, name, section_path);
-    throw InputError(section_path + "/Model = '" + model +
-                     "' is not a known law; use one of: linear elastic, "
-                     "neo-Hookean, Hencky, Mohr-Coulomb, von Mises, "
-                     "Drucker-Prager viscoplastic, Wieckowski granular.");
+    const auto        law   = registered_laws().find(model);
+    if (law == registered_laws().end())
+      {
+        std::string known;
+        for (const auto &entry : registered_laws())
+          known += (known.empty() ? "" : ", ") + entry.first;
+        throw InputError(section_path + "/Model = '" + model +
+                         "' is not a known law; use one of: " + known + ".");
+      }
+    return law->second.create(prm, name, section_path);
   }
 
 

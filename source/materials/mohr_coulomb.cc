@@ -294,4 +294,12 @@ namespace mpm
       std::sqrt(2. / 3. * (plastic_strain_step * plastic_strain_step));
     return r;
   }
+
+
+
+  MPM_REGISTER_MATERIAL(MohrCoulomb,
+                        "Mohr-Coulomb",
+                        "elastoplastic at finite strain with Hencky "
+                        "elasticity (its subsection).",
+                        &MohrCoulomb::declare_parameters)
 } // namespace mpm

@@ -39,4 +39,12 @@ namespace mpm
             2. * (mu - lambda * std::log(J)) * identity_tensor<3>()) /
            J;
   }
+
+
+
+  MPM_REGISTER_MATERIAL(NeoHookean,
+                        "neo-Hookean",
+                        "compressible hyperelastic, sigma = (mu (b - I) + "
+                        "lambda ln(J) I)/J.",
+                        nullptr)
 } // namespace mpm

@@ -82,4 +82,12 @@ namespace mpm
     r.plastic_strain_increment = gamma;
     return r;
   }
+
+
+
+  MPM_REGISTER_MATERIAL(VonMises,
+                        "von Mises",
+                        "elastoplastic (J2) at finite strain with Hencky "
+                        "elasticity (its subsection).",
+                        &VonMises::declare_parameters)
 } // namespace mpm

@@ -136,4 +136,16 @@ namespace mpm
     return std::sqrt((K + 4. / 3. * shear_to_bulk * K) / current_density) +
            2. * bulk_viscosity / (current_density * cell_size);
   }
+
+
+
+  MPM_REGISTER_MATERIAL(WieckowskiGranular,
+                        "Wieckowski granular",
+                        "his law for loose fill, eq. (24): pressure "
+                        "exponential in the volume change plus bulk "
+                        "viscosity, shear modulus proportional to the "
+                        "pressure, deviator as 'Drucker-Prager "
+                        "viscoplastic' (both subsections; Young's modulus "
+                        "is not used).",
+                        &WieckowskiGranular::declare_parameters)
 } // namespace mpm

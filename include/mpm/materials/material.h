@@ -40,7 +40,34 @@ namespace mpm
   public:
     virtual ~Material() = default;
 
-    /** Declare the entries of one material subsection. */
+    /**
+     * What the registry knows of a law: what it is (for the documentation
+     * of `Model`), how it declares its own subsection (if it has one) and
+     * how it is built from the current subsection, the material's name and
+     * the subsection's path (for messages).
+     */
+    struct Law
+    {
+      std::string description;
+      void (*declare_parameters)(ParameterHandler &) = nullptr;
+      std::unique_ptr<Material> (*create)(ParameterHandler &,
+                                          const std::string &,
+                                          const std::string &) = nullptr;
+    };
+
+    /**
+     * Add a law under its `Model` name. Each law calls this once, at the
+     * end of its own file (MPM_REGISTER_MATERIAL), so a new law is one new
+     * file. Returns true, for the static that calls it.
+     */
+    static bool
+    register_law(const std::string &model, const Law &law);
+
+    /**
+     * Declare the entries of one material subsection: those common to
+     * every law, `Model` with every registered law, and each law's own
+     * subsection.
+     */
     static void
     declare_parameters(ParameterHandler &prm);
 
@@ -180,5 +207,25 @@ namespace mpm
     std::vector<std::string> internal_names;
   };
 } // namespace mpm
+
+/**
+ * Register the Material subclass `Class` under the `Model` name `model`, at
+ * the end of the law's own source file. `declare` is the law's own
+ * declare_parameters, or nullptr for a law without a subsection.
+ */
+#define MPM_REGISTER_MATERIAL(Class, model, description, declare)       \
+  namespace                                                             \
+  {                                                                     \
+    std::unique_ptr<::mpm::Material>                                    \
+    create_##Class(::dealii::ParameterHandler &       prm,               \
+                   const std::string &               name,              \
+                   const std::string &               section_path)      \
+    {                                                                   \
+      return std::make_unique<Class>(prm, name, section_path);          \
+    }                                                                   \
+    const bool Class##_registered =                                     \
+      ::mpm::Material::register_law(model,                              \
+                                    {description, declare, &create_##Class}); \
+  }
 
 #endif
