@@ -15,6 +15,7 @@
 
 #include <mpm/core/application.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -142,9 +143,12 @@ namespace
       {
         const auto [n_identical, same_set] =
           identical_files(name + "straight", name + "parts");
+        // Identical and written: two missing files would be equal too.
+        const std::string series = contents(name + "straight/time_series.csv");
         mpm_tests::check("time series identical",
-                         contents(name + "straight/time_series.csv") ==
-                           contents(name + "parts/time_series.csv"));
+                         std::count(series.begin(), series.end(), '\n') > 2 &&
+                           series ==
+                             contents(name + "parts/time_series.csv"));
         mpm_tests::check("every output file identical",
                          same_set && n_identical > 2);
       }

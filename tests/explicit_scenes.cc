@@ -32,7 +32,7 @@
 using namespace dealii;
 
 /** Output in the test's directory, named after the scene. */
-std::map<std::string, std::vector<double>>
+mpm_tests::Columns
 run_scene(const std::string &scene, const std::vector<std::string> &settings)
 {
   return mpm_tests::run_scene(scene,

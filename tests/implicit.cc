@@ -57,7 +57,7 @@ using namespace dealii;
  * full traction times the load factor at each time.
  */
 double
-oedometer_error(std::map<std::string, std::vector<double>> &csv,
+oedometer_error(mpm_tests::Columns &csv,
                 const double                                full_traction,
                 const std::function<double(double)> &       load_factor)
 {
@@ -185,7 +185,7 @@ main(int argc, char **argv)
   // Cantilever under self-weight, h = 0.5.
   {
     const std::string cantilever = "../prm/cantilever.prm";
-    auto tip = [](std::map<std::string, std::vector<double>> &csv) {
+    auto tip = [](mpm_tests::Columns &csv) {
       // Bilinear extrapolation to (8, 0.5) of the four points of the last
       // cell below the axis: exact for the Q1 displacement field.
       double v[4];

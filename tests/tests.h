@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <iostream>
 #include <iomanip>
 #include <map>
@@ -57,14 +58,34 @@ namespace mpm_tests
   {
     return std::string(SOURCE_DIR) + "/" + name;
   }
+  /**
+   * The columns of a time series by name. A run that failed may have
+   * written no rows, or no file: then every column holds two NaN, so that
+   * a test reading its first, second or last row prints FAIL instead of
+   * reading past the end.
+   */
+  class Columns : public std::map<std::string, std::vector<double>>
+  {
+  public:
+    std::vector<double> &
+    operator[](const std::string &name)
+    {
+      std::vector<double> &column =
+        std::map<std::string, std::vector<double>>::operator[](name);
+      if (column.empty())
+        column.assign(2, std::numeric_limits<double>::quiet_NaN());
+      return column;
+    }
+  };
+
   /** The columns of a CSV file with a header line, by name. */
-  inline std::map<std::string, std::vector<double>>
+  inline Columns
   read_csv(const std::string &filename)
   {
-    std::ifstream                              in(filename);
-    std::string                                line;
-    std::vector<std::string>                   names;
-    std::map<std::string, std::vector<double>> columns;
+    std::ifstream            in(filename);
+    std::string              line;
+    std::vector<std::string> names;
+    Columns                  columns;
     std::getline(in, line);
     {
       std::istringstream header(line);
@@ -72,15 +93,20 @@ namespace mpm_tests
       while (std::getline(header, name, ','))
         names.push_back(name);
     }
-    while (std::getline(in, line))
+    unsigned int n_rows = 0;
+    for (; std::getline(in, line); ++n_rows)
       {
         std::istringstream row(line);
         std::string        value;
         for (unsigned int i = 0; std::getline(row, value, ','); ++i)
-          columns[names[i]].push_back(std::stod(value));
+          columns.std::map<std::string, std::vector<double>>::operator[](
+            names.at(i)).push_back(std::stod(value));
       }
+    if (n_rows == 0)
+      check(filename + " has rows", false);
     return columns;
   }
+
   /**
    * The rolling disk of prm/rolling_disk.prm: the centre's displacement
    * along the plane over the exact rolling a t^2 / 2, a = 2/3 g sin 60
@@ -88,7 +114,7 @@ namespace mpm_tests
    * centre's height.
    */
   inline std::pair<double, double>
-  rolling_disk_ratio_and_drift(std::map<std::string, std::vector<double>> &csv)
+  rolling_disk_ratio_and_drift(Columns &csv)
   {
     const double t       = csv["time"].back();
     const double rolling = 0.5 * (2. / 3.) * 9.81 *
@@ -107,7 +133,7 @@ namespace mpm_tests
    * settings; log the exit code and return the time series. With
    * `screen`, what the run prints (on rank 0) goes there instead.
    */
-  inline std::map<std::string, std::vector<double>>
+  inline Columns
   run_scene(const std::string &             scene,
             const std::string &             directory,
             const std::vector<std::string> &settings = {},
