@@ -19,7 +19,15 @@
 //   v0 times the mass the wall nodes carry, M h / (2 W) for a block of
 //   width W on cells of width h (2 x 2 or 3 x 3 points per cell put half a
 //   cell column's mass on the wall). MUSL and USL; USF constrains the
-//   velocity before the forces, so its points keep the old velocity.
+//   velocity before the forces, so its points keep the old velocity;
+// - an elastic wedge dropped into the hopper of prm/hopper_gmsh.prm (a
+//   gmsh grid of general quadrilaterals, slip on its slanted walls
+//   x = 0.5 - y/6 and x = 1.5 + y/6, fixed floor): the scene is symmetric
+//   about x = 1, so the horizontal momentum stays zero to round-off; the
+//   material stays inside the walls within half a point spacing and comes
+//   to rest on them where its base is as wide as the channel; mass is
+//   constant and the total energy does not grow (frictionless walls,
+//   elastic material).
 
 #include <deal.II/base/mpi.h>
 
@@ -176,6 +184,50 @@ block_into_wall(const std::string &scheme)
                    std::abs(csv["momentum_x"][1] - expected) < 1e-12 * mass);
 }
 
+void
+hopper()
+{
+  auto         csv       = run_scene("../prm/hopper_gmsh.prm", {});
+  const double mass      = csv["mass"][0];
+  const double e0        = csv["total_energy"][0];
+  const double momentum  = mass * std::sqrt(2. * 9.81 * 2.6);
+  const double half_step = 0.25 * (1. / 16.); // half a point spacing
+  double       largest_px = 0., energy_growth = 0., outside = 0., mass_change = 0.;
+  for (unsigned int n = 0; n < csv["time"].size(); ++n)
+    {
+      largest_px    = std::max(largest_px, std::abs(csv["momentum_x"][n]));
+      energy_growth = std::max(energy_growth, csv["total_energy"][n] - e0);
+      mass_change = std::max(mass_change, std::abs(csv["mass"][n] - mass));
+      // The leftmost point lies at a height of at most max_y, where the
+      // wall is at 0.5 - max_y / 6 or further right.
+      const double top = csv["max_y"][n];
+      outside          = std::max({outside,
+                          (0.5 - top / 6.) - csv["min_x"][n],
+                          csv["max_x"][n] - (1.5 + top / 6.),
+                          -csv["min_y"][n]});
+    }
+  deallog << "hopper: " << csv["time"].size() - 1 << " steps, lowest point "
+          << csv["min_y"].back() << std::endl;
+  mpm_tests::check("hopper: ran to 1 s", csv["time"].back() > 1. - 1e-12);
+  mpm_tests::check("hopper: symmetric, horizontal momentum below 1e-10 of "
+                   "the impact momentum",
+                   largest_px < 1e-10 * momentum);
+  mpm_tests::check("hopper: the material stays within half a point spacing "
+                   "of the slanted walls and the floor",
+                   outside < half_step);
+  // The wedge's base (1.3 m) is as wide as the channel (1 + y/3) at
+  // y = 0.9: it comes to rest on the walls there, held about one cell
+  // (0.125 m tall) early by the wall cells' nodes, not on the floor.
+  mpm_tests::check("hopper: the wedge's base rests on the walls near y = "
+                   "0.9, within a cell above it",
+                   csv["min_y"].back() > 0.9 - half_step &&
+                     csv["min_y"].back() < 0.9 + 0.125);
+  mpm_tests::check("hopper: mass constant to round-off, total energy does "
+                   "not grow (to 1e-9 of its start)",
+                   mass_change < 1e-12 * mass &&
+                     energy_growth < 1e-9 * std::abs(e0));
+}
+
 int
 main(int argc, char **argv)
 {
@@ -186,6 +238,7 @@ main(int argc, char **argv)
   // Uniform motion: the PIC velocity N (v + dt a) equals the FLIP one, so
   // the closed forms hold for any blend (and fail if PIC used v^t).
   free_fall("scenes/free_fall.prm", "y", 0.5);
+  hopper();
   for (const std::string scheme : {"USF", "USL", "MUSL"})
     vibrating_bar(scheme);
   two_disks();

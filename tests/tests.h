@@ -130,14 +130,16 @@ namespace mpm_tests
   /**
    * Run a scene through the mpm command line with its output in
    * `directory` (no ParaView files) and the given 'Section/entry=value'
-   * settings; log the exit code and return the time series. With
-   * `screen`, what the run prints (on rank 0) goes there instead.
+   * settings; log the exit code (and give it in `exit_code`) and return
+   * the time series. With `screen`, what the run prints (on rank 0) goes
+   * there instead.
    */
   inline Columns
   run_scene(const std::string &             scene,
             const std::string &             directory,
-            const std::vector<std::string> &settings = {},
-            std::string *                   screen   = nullptr)
+            const std::vector<std::string> &settings  = {},
+            std::string *                   screen    = nullptr,
+            int *                           exit_code = nullptr)
   {
     std::vector<std::string> arguments = {"--set",
                                           "Output/Directory=" + directory,
@@ -167,6 +169,8 @@ namespace mpm_tests
     if (screen)
       *screen = captured.str();
     dealii::deallog << directory << ": exit code " << code << std::endl;
+    if (exit_code)
+      *exit_code = code;
     MPI_Barrier(MPI_COMM_WORLD);
     return read_csv(directory + "/time_series.csv");
   }
