@@ -2,9 +2,9 @@
 
 #include <mpm/core/input_error.h>
 #include <mpm/core/parse.h>
-#include <mpm/core/shared_position.h>
-#include <mpm/boundary/point_loads.h>
 #include <mpm/core/simulator.h>
+#include <mpm/time/explicit_scheme.h>
+#include <mpm/time/implicit_scheme.h>
 
 #include <sys/resource.h>
 #include <unistd.h>
@@ -43,74 +43,16 @@ namespace mpm
     Grid<dim>::declare_parameters(prm);
     DirichletConditions<dim>::declare_parameters(prm);
     PointLoads<dim>::declare_parameters(prm);
-    ImplicitIntegrator<dim>::declare_parameters(prm);
-
-    prm.enter_subsection("Time stepping");
-    prm.declare_entry("End time", "1", Patterns::Double(0.),
-                      "Simulated time at which the run ends [s].");
-    prm.declare_entry("Time step", "0", Patterns::Double(0.),
-                      "Fixed time step [s]. 0 chooses every step from the "
-                      "CFL number: dt = CFL h / (c + |v|_max), with h the "
-                      "smallest cell edge and c the largest signal speed of "
-                      "the points (the p-wave speed of their current "
-                      "stiffness, plus a viscous term for a law with bulk "
-                      "viscosity). A fixed step above the stability limit "
-                      "h / (c + |v|_max) is refused at the start, and stops "
-                      "the run if the state outgrows it later.");
-    prm.declare_entry("CFL number", "0.3", Patterns::Double(0., 1.),
-                      "Fraction of the stability limit used by the automatic "
-                      "time step, 0 < CFL <= 1.");
-    prm.declare_entry("Scheme", "explicit",
-                      Patterns::Selection("explicit|quasi-static|Newmark"),
-                      "explicit: dynamic explicit MPM with the Update "
-                      "scheme below. quasi-static: equilibrium in Load steps "
-                      "over the pseudo-time End time, loads and gravity "
-                      "ramped with Loads/Load factor (t / End time unless "
-                      "given), solved by Newton (see "
-                      "Newton). Newmark: implicit dynamic MPM with the fixed "
-                      "Time step, solved by Newton (see Newton, Newmark).");
-    prm.declare_entry("Load steps", "10", Patterns::Integer(1),
-                      "Quasi-static: number of equal load steps.");
-    prm.declare_entry("Update scheme", "MUSL",
-                      Patterns::Selection("USF|USL|MUSL"),
-                      "Order of the explicit update: USF (update stress "
-                      "first), USL (update stress last), MUSL (modified USL, "
-                      "Wieckowski 2004 section 3.5).");
-    prm.declare_entry("PIC fraction", "0", Patterns::Double(0., 1.),
-                      "Explicit: share of the PIC velocity, N (v + dt a), in "
-                      "the point velocity update; the rest is FLIP, v_p + dt "
-                      "N a. 0 is pure FLIP, as [W], which conserves energy "
-                      "but keeps point velocities the grid cannot see (in a "
-                      "settled granular deposit they never die out). A few "
-                      "percent damps them within tens of steps at the cost "
-                      "of a little dissipation; 1 is pure PIC, strongly "
-                      "dissipative.");
-    prm.leave_subsection();
+    TimeScheme<dim>::declare_parameters(prm);
+    ExplicitScheme<dim>::declare_parameters(prm);
+    ImplicitScheme<dim>::declare_parameters(prm);
 
     prm.enter_subsection("Output");
     prm.declare_entry("Directory", "output", Patterns::Anything(),
                       "Directory for all output; created if missing.");
-    prm.declare_entry("Write ParaView output", "true", Patterns::Bool(),
-                      "Write snapshots of points (and grid) for ParaView. "
-                      "Off for throughput measurements.");
-    prm.declare_entry("Interval", "0", Patterns::Double(0.),
-                      "Simulated time between ParaView snapshots. 0 writes "
-                      "the first and the last state only.");
-    prm.declare_entry("Write grid", "true", Patterns::Bool(),
-                      "Also write the background grid with nodal mass, "
-                      "velocity and acceleration.");
-    prm.declare_entry("Time series file", "time_series.csv",
-                      Patterns::Anything(),
-                      "CSV file (in the output directory) with time, "
-                      "energies, momentum, mass, centre of mass and tracked "
-                      "points.");
-    prm.declare_entry("Time series interval", "0", Patterns::Double(0.),
-                      "Simulated time between rows of the time series; 0 "
-                      "writes every step.");
-    prm.declare_entry("Tracked points", "", Patterns::Anything(),
-                      "Positions, ';'-separated; the material point nearest "
-                      "to each at the start is followed in the time series.");
     prm.leave_subsection();
+    VtuOutput<dim>::declare_parameters(prm);
+    TimeSeries<dim>::declare_parameters(prm);
     Checkpoint::declare_parameters(prm);
 
     prm.enter_subsection("Materials");
@@ -156,32 +98,10 @@ namespace mpm
     TimerOutput::Scope timer_section(timer, "setup");
 
     gravity = parse_point<dim>(prm.get("Gravity"), "Gravity");
-    const std::string method = prm.get("Method");
-
-    prm.enter_subsection("Time stepping");
-    end_time        = prm.get_double("End time");
-    fixed_time_step = prm.get_double("Time step");
-    cfl_number      = prm.get_double("CFL number");
-    n_load_steps    = prm.get_integer("Load steps");
-    const std::string scheme_name = prm.get("Scheme");
-    const typename ExplicitIntegrator<dim>::Scheme scheme =
-      ExplicitIntegrator<dim>::parse_scheme(prm.get("Update scheme"));
-    const double pic_fraction = prm.get_double("PIC fraction");
-    prm.leave_subsection();
-    if (!(end_time > 0.))
-      throw InputError("Time stepping/End time must be positive.");
-    if (!(cfl_number > 0.))
-      throw InputError("Time stepping/CFL number must be positive.");
-
+    const std::string method      = prm.get("Method");
+    const std::string scheme_name = TimeScheme<dim>::scheme_name(prm);
     prm.enter_subsection("Output");
-    output_directory     = prm.get("Directory");
-    write_paraview       = prm.get_bool("Write ParaView output");
-    output_interval      = prm.get_double("Interval");
-    write_grid           = prm.get_bool("Write grid");
-    time_series_file     = prm.get("Time series file");
-    time_series_interval = prm.get_double("Time series interval");
-    tracked_positions =
-      parse_point_list<dim>(prm.get("Tracked points"), "Output/Tracked points");
+    const std::string output_directory = prm.get("Directory");
     prm.leave_subsection();
 
     prm.enter_subsection("Materials");
@@ -249,6 +169,9 @@ namespace mpm
     seeder = std::make_unique<PointSeeder<dim>>(*grid);
     seeder->seed(bodies, materials, *points);
     seeder->apply_geostatic_stress(bodies, materials, gravity, *points);
+    prm.enter_subsection("Time stepping");
+    end_time = prm.get_double("End time");
+    prm.leave_subsection();
     loads = std::make_unique<PointLoads<dim>>(prm,
                                               scheme_name == "quasi-static",
                                               end_time);
@@ -263,46 +186,42 @@ namespace mpm
 
     transfer = std::make_unique<GridTransfer<dim>>(
       *points, *basis, *nodes, *dirichlet, gravity);
-    integrator = std::make_unique<ExplicitIntegrator<dim>>(
-      *transfer, materials, scheme, pic_fraction, grid->minimum_cell_size(),
-      timer);
-    std::unique_ptr<MeshfreeBasis<dim>> meshfree;
-    if (method != "MPM")
+    const typename TimeScheme<dim>::Scene scene{
+      *grid, *points, *transfer, materials, *loads, pcout, timer};
+    if (scheme_name == "explicit")
       {
-        if (scheme_name == "explicit")
+        if (method != "MPM")
           throw InputError("Method = " + method + " runs with Time "
                            "stepping/Scheme = quasi-static or Newmark; the "
                            "explicit scheme is MPM only.");
-        // The cloud's supports cross rank boundaries freely; ghost nodes
-        // for them are not built yet (doc/architecture.md).
-        if (Utilities::MPI::n_mpi_processes(communicator) > 1)
-          throw InputError("Method = " + method + " runs on one rank only; "
-                           "run this scene without mpirun, or with "
-                           "Method = MPM.");
-        meshfree = std::make_unique<MeshfreeBasis<dim>>(
-          MeshfreeBasis<dim>::parse_parameters(
-            prm,
-            method == "GMM-MLS" ? MeshfreeBasis<dim>::Kind::mls :
-                                  MeshfreeBasis<dim>::Kind::lme,
-            grid->minimum_cell_size()));
+        scheme = std::make_unique<ExplicitScheme<dim>>(prm, scene);
       }
-    if (scheme_name != "explicit")
-      implicit = std::make_unique<ImplicitIntegrator<dim>>(scheme_name ==
-                                                             "Newmark",
-                                                           prm,
-                                                           *points,
-                                                           *grid,
-                                                           *basis,
-                                                           *dirichlet,
-                                                           materials,
-                                                           gravity,
-                                                           pcout,
-                                                           timer,
-                                                           std::move(meshfree));
-    dynamic_implicit = scheme_name == "Newmark";
-    if (dynamic_implicit && !(fixed_time_step > 0.))
-      throw InputError("Time stepping/Scheme = Newmark needs a Time step "
-                       "above 0.");
+    else
+      {
+        std::unique_ptr<MeshfreeBasis<dim>> meshfree;
+        if (method != "MPM")
+          {
+            // The cloud's supports cross rank boundaries freely; ghost
+            // nodes for them are not built yet (doc/architecture.md).
+            if (Utilities::MPI::n_mpi_processes(communicator) > 1)
+              throw InputError("Method = " + method + " runs on one rank "
+                               "only; run this scene without mpirun, or with "
+                               "Method = MPM.");
+            meshfree = std::make_unique<MeshfreeBasis<dim>>(
+              MeshfreeBasis<dim>::parse_parameters(
+                prm,
+                method == "GMM-MLS" ? MeshfreeBasis<dim>::Kind::mls :
+                                      MeshfreeBasis<dim>::Kind::lme,
+                grid->minimum_cell_size()));
+          }
+        scheme = std::make_unique<ImplicitScheme<dim>>(prm,
+                                                       scene,
+                                                       scheme_name == "Newmark",
+                                                       *basis,
+                                                       *dirichlet,
+                                                       gravity,
+                                                       std::move(meshfree));
+      }
 
     std::error_code error;
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
@@ -310,37 +229,23 @@ namespace mpm
     if (Utilities::MPI::max(error ? 1 : 0, communicator) != 0)
       throw InputError("Output/Directory = '" + output_directory +
                        "' cannot be created.");
-    vtu_output = std::make_unique<VtuOutput<dim>>(output_directory,
-                                                  write_grid,
-                                                  communicator);
+    vtu_output =
+      std::make_unique<VtuOutput<dim>>(prm, output_directory, communicator);
     time_series = std::make_unique<TimeSeries<dim>>(
-      output_directory + "/" + time_series_file, tracked_positions, gravity,
-      *points, restart);
-    // A continued run may go on further, or with smaller steps (after a
-    // run that went unstable). The quasi-static loads ramp over End time,
-    // so there only the number of load steps may change. The tangent
-    // check only prints (and checkpoints from before it lack the entry).
+      prm, output_directory, gravity, *points, restart);
+    // The tangent check only prints (and checkpoints from before it lack
+    // the entry); the scheme's step entries may change too.
     std::vector<std::string> entries_that_may_change = {
       "Output/Directory", "Newton/Check tangent"};
-    if (!implicit)
-      entries_that_may_change.insert(entries_that_may_change.end(),
-                                     {"Time stepping/End time",
-                                      "Time stepping/Time step",
-                                      "Time stepping/CFL number"});
-    else if (dynamic_implicit)
-      entries_that_may_change.insert(entries_that_may_change.end(),
-                                     {"Time stepping/End time",
-                                      "Time stepping/Time step"});
-    else
-      entries_that_may_change.push_back("Time stepping/Load steps");
+    for (const std::string &entry : scheme->entries_that_may_change())
+      entries_that_may_change.push_back(entry);
     checkpoint = std::make_unique<Checkpoint>(prm,
                                               output_directory,
                                               entries_that_may_change,
                                               communicator);
 
-    next_output        = output_interval;
-    next_time_series   = time_series_interval;
-    next_implicit_step = implicit_step_size();
+    next_output      = vtu_output->interval();
+    next_time_series = time_series->interval();
     if (!restart)
       checkpoint->discard_previous();
     else
@@ -349,134 +254,9 @@ namespace mpm
           [&](boost::archive::binary_iarchive &archive) {
             serialize(archive, 0);
           });
-        // The step size may have been lowered.
-        next_implicit_step = std::min(next_implicit_step, implicit_step_size());
         restarted = true;
       }
-
-    // A fixed time step must be stable for the state the run starts from.
-    if (fixed_time_step > 0. && !implicit)
-      {
-        const double limit = stability_limit(current_speeds());
-        if (fixed_time_step > limit)
-          throw InputError(fixed_step_beyond(limit) +
-                           ". Use a smaller step, or 0 for an automatic one.");
-      }
-  }
-
-
-
-  template <int dim>
-  typename Simulator<dim>::Speeds
-  Simulator<dim>::current_speeds() const
-  {
-    using Layout = PointLayout<dim>;
-    Speeds speeds;
-    for (const auto &particle : points->handler())
-      {
-        const ArrayView<const double> p = particle.get_properties();
-        const Material &              material =
-          *materials[static_cast<unsigned int>(p[Layout::material_id])];
-        speeds.point = std::max(speeds.point, Layout::get_velocity(p).norm());
-        speeds.signal =
-          std::max(speeds.signal,
-                   material.signal_speed(
-                     Layout::get_stress(p),
-                     ArrayView<const double>(&p[Layout::internal_variables],
-                                             material.n_internal_variables()),
-                     grid->minimum_cell_size()));
-      }
-    speeds.point  = Utilities::MPI::max(speeds.point, communicator);
-    speeds.signal = Utilities::MPI::max(speeds.signal, communicator);
-    return speeds;
-  }
-
-
-
-  template <int dim>
-  double
-  Simulator<dim>::stability_limit(const Speeds &speeds) const
-  {
-    return grid->minimum_cell_size() / (speeds.signal + speeds.point);
-  }
-
-
-
-  template <int dim>
-  double
-  Simulator<dim>::stable_time_step(const Speeds &speeds) const
-  {
-    const double step = cfl_number * stability_limit(speeds);
-    // Every rank has the same speeds, so every rank throws.
-    if (!(step > 0. && std::isfinite(step)))
-      throw RunError("The explicit time step is not defined: the largest "
-                     "signal speed is " + std::to_string(speeds.signal) +
-                     " m/s and the fastest point moves at " +
-                     std::to_string(speeds.point) +
-                     " m/s (every point has come apart and rests, or a law "
-                     "overflowed).");
-    return step;
-  }
-
-
-
-  template <int dim>
-  std::string
-  Simulator<dim>::fixed_step_beyond(const double limit) const
-  {
-    std::ostringstream message;
-    message << "Time stepping/Time step = " << fixed_time_step
-            << " exceeds the explicit stability limit " << limit
-            << " (smallest cell edge " << grid->minimum_cell_size()
-            << " over the largest signal speed plus the fastest point)";
-    return message.str();
-  }
-
-
-
-  template <int dim>
-  void
-  Simulator<dim>::check_step(
-    const typename ExplicitIntegrator<dim>::StepReport &report,
-    const double                                         step_size)
-  {
-    // Every rank takes part, so every rank throws the same error.
-    const bool failed = Utilities::MPI::logical_or(report.failed, communicator);
-    if (failed)
-      {
-        // The reason of the point that is named, so the text is the same
-        // on any number of ranks.
-        const auto [where, rank] = shared_position_and_rank(
-          report.failed, report.failed_position, communicator);
-        const std::string reason = Utilities::MPI::all_gather(
-          communicator, report.failed ? report.failure : std::string())[rank];
-        std::ostringstream message;
-        message << "The run went unstable in step " << step + 1 << " (t = "
-                << time + step_size << ", dt = " << step_size
-                << "): " << reason
-                << ", at " << where
-                << ". The last good state is in the output written so far. "
-                   "Try a smaller Time stepping/CFL number or Time step.";
-        throw RunError(message.str());
-      }
-
-    const double max_fraction =
-      Utilities::MPI::max(report.max_cell_fraction, communicator);
-    if (max_fraction > 1.)
-      {
-        const std::string where =
-          shared_position(report.max_cell_fraction >=
-                            max_fraction * (1. - 1e-12),
-                          report.fastest_position,
-                          communicator);
-        std::ostringstream message;
-        message << "In step " << step + 1 << " (t = " << time + step_size
-                << ", dt = " << step_size << ") the material point at "
-                << where << " would move " << max_fraction
-                << " cell widths, more than the one cell a step allows. "
-                   "Reduce Time stepping/Time step or CFL number.";
-        throw RunError(message.str());
-      }
+    scheme->check_start();
   }
 
 
@@ -492,15 +272,6 @@ namespace mpm
          << ": mpm --restart continues from it, with other step entries if "
             "they are what failed.";
     return hint.str();
-  }
-
-
-
-  template <int dim>
-  double
-  Simulator<dim>::implicit_step_size() const
-  {
-    return dynamic_implicit ? fixed_time_step : end_time / n_load_steps;
   }
 
 
@@ -544,84 +315,29 @@ namespace mpm
 
 
   template <int dim>
-  typename Simulator<dim>::Speeds
-  Simulator<dim>::explicit_step()
-  {
-    transfer->set_load_factor(loads->load_factor(time));
-    const auto report = integrator->step(dt);
-    check_step(report, dt);
-    Speeds speeds;
-    speeds.point  = Utilities::MPI::max(report.max_speed, communicator);
-    speeds.signal = Utilities::MPI::max(report.max_signal_speed, communicator);
-    const bool last_step = time + dt >= end_time - end_time_tolerance();
-    if (fixed_time_step > 0. && !last_step)
-      {
-        const double limit = stability_limit(speeds);
-        if (fixed_time_step > limit)
-          {
-            std::ostringstream message;
-            message << "After step " << step + 1 << " (t = " << time + dt
-                    << ") " << fixed_step_beyond(limit)
-                    << ": the material has stiffened or the points have sped "
-                       "up. The last good state is in the output written so "
-                       "far. Use a smaller step, or 0 for an automatic one.";
-            throw RunError(message.str());
-          }
-      }
-    return speeds;
-  }
-
-
-
-  template <int dim>
-  void
-  Simulator<dim>::implicit_step()
-  {
-    const unsigned int max_cuts = 4;
-    for (unsigned int cut = 0;; ++cut)
-      {
-        try
-          {
-            const double load_factor = loads->load_factor(time + dt);
-            if (dynamic_implicit)
-              pcout << "  time step " << step + 1 << ": t = " << time + dt;
-            else
-              pcout << "  load step " << step + 1 << ": t = " << time + dt;
-            pcout << ", load factor " << load_factor << std::endl;
-            implicit->step(load_factor, dt);
-            return;
-          }
-        catch (const RunError &e)
-          {
-            if (!e.smaller_step_helps)
-              throw RunError(std::string(e.what()) +
-                             " The last good state is in the output written "
-                             "so far.",
-                             false);
-            if (cut == max_cuts)
-              throw RunError(std::string(e.what()) + " Cut " +
-                             std::to_string(max_cuts) +
-                             " times; giving up. The last good state is in "
-                             "the output written so far.");
-            dt /= 2.;
-            pcout << "  " << e.what() << " Cutting the step to " << dt << "."
-                  << std::endl;
-          }
-      }
-  }
-
-
-
-  template <int dim>
   template <class Archive>
   void
   Simulator<dim>::serialize(Archive &archive, const unsigned int)
   {
-    archive &time &step &dt &speeds.point &speeds.signal &next_output
-      &next_time_series &next_implicit_step;
+    archive &time &step &dt &next_output &next_time_series;
     archive &*points &*seeder &*vtu_output &*time_series;
-    if (implicit)
-      archive &*implicit;
+    if constexpr (Archive::is_saving::value)
+      scheme->save(archive);
+    else
+      scheme->load(archive);
+  }
+
+
+
+  template <int dim>
+  void
+  Simulator<dim>::write_snapshot()
+  {
+    vtu_output->write(time,
+                      *points,
+                      *nodes,
+                      grid->get_mapping(),
+                      scheme->node_cloud());
   }
 
 
@@ -630,8 +346,9 @@ namespace mpm
   void
   Simulator<dim>::run()
   {
-    pcout << "mpm: " << dim << "D, " << grid->get_triangulation().n_global_active_cells()
-          << " cells, " << points->n_global_points() << " material points, "
+    pcout << "mpm: " << dim << "D, "
+          << grid->get_triangulation().n_global_active_cells() << " cells, "
+          << points->n_global_points() << " material points, "
           << Utilities::MPI::n_mpi_processes(communicator) << " rank(s)"
           << std::endl;
     wall_clock.restart();
@@ -649,41 +366,20 @@ namespace mpm
                     "back to the one it started from.\n");
       }
     else
-      speeds = current_speeds();
-
-    if (dynamic_implicit && !restarted)
       {
-        // Newmark needs the initial acceleration: M a = f_ext - f_int with
-        // the lumped mass, from the same projection the explicit scheme
-        // uses.
-        transfer->set_load_factor(loads->load_factor(0.));
-        transfer->project_mass_momentum(true);
-        transfer->compute_nodal_acceleration(0., false);
-        transfer->for_each_point(
-          [&](auto &particle, const Support<dim> &support) {
-            const Tensor<1, dim> a = transfer->interpolate(
-              support, GridNodes<dim>::NodalLayout::force);
-            for (unsigned int d = 0; d < dim; ++d)
-              particle->get_properties()[points->acceleration_index() + d] =
-                a[d];
-          });
-      }
-    if (!restarted)
-      {
+        scheme->start();
         TimerOutput::Scope t(timer, "output");
         // The nodal values are written as they were last projected; project
         // once so the first snapshot shows the initial grid state.
         transfer->project_mass_momentum(false);
         transfer->compute_nodal_velocity();
         diagnostics = time_series->write_row(time, step, 0., *points);
-        if (write_paraview)
-          vtu_output->write(time,
-                            *points,
-                            *nodes,
-                            grid->get_mapping(),
-                            implicit ? implicit->node_cloud() : nullptr);
+        if (vtu_output->enabled())
+          write_snapshot();
       }
-    const double time_tolerance = end_time_tolerance();
+    const double time_tolerance   = end_time_tolerance();
+    const double output_interval  = vtu_output->interval();
+    const double series_interval  = time_series->interval();
 
     // Only a step that overshoots End time is shortened: one that ends
     // within round-off of it keeps its size, so that a run which stops
@@ -691,22 +387,7 @@ namespace mpm
     // its checkpoint repeats the uninterrupted run to the last bit).
     while (time < end_time - time_tolerance)
       {
-        if (implicit)
-          {
-            dt = next_implicit_step;
-            if (time + dt > end_time + time_tolerance)
-              dt = end_time - time;
-            implicit_step();
-            next_implicit_step = std::min(implicit_step_size(), 2. * dt);
-          }
-        else
-          {
-            dt = (fixed_time_step > 0. ? fixed_time_step :
-                                         stable_time_step(speeds));
-            if (time + dt > end_time + time_tolerance)
-              dt = end_time - time;
-            speeds = explicit_step();
-          }
+        dt = scheme->advance(time, step);
         {
           TimerOutput::Scope t(timer, "sort points");
           points->sort();
@@ -715,32 +396,22 @@ namespace mpm
         ++step;
 
         const bool at_end = !(time < end_time - time_tolerance);
-        if (at_end || time_series_interval == 0. ||
+        if (at_end || series_interval == 0. ||
             time >= next_time_series - time_tolerance)
           {
             TimerOutput::Scope t(timer, "time series");
             diagnostics = time_series->write_row(time, step, dt, *points);
-            while (time_series_interval > 0. &&
+            while (series_interval > 0. &&
                    next_time_series <= time + time_tolerance)
-              next_time_series += time_series_interval;
+              next_time_series += series_interval;
           }
-        if (write_paraview &&
+        if (vtu_output->enabled() &&
             ((output_interval > 0. && time >= next_output - time_tolerance) ||
              at_end))
           {
             TimerOutput::Scope t(timer, "output");
-            if (implicit)
-              {
-                // The implicit schemes do not use the nodal vector; project
-                // for the grid output.
-                transfer->project_mass_momentum(false);
-                transfer->compute_nodal_velocity();
-              }
-            vtu_output->write(time,
-                              *points,
-                              *nodes,
-                              grid->get_mapping(),
-                              implicit ? implicit->node_cloud() : nullptr);
+            scheme->prepare_grid_output();
+            write_snapshot();
             while (output_interval > 0. &&
                    next_output <= time + time_tolerance)
               next_output += output_interval;
@@ -779,15 +450,7 @@ namespace mpm
           << " particle-steps per second per rank, " << wall
           << " s wall time, peak memory " << peak_memory_mb
           << " MB (all ranks)" << std::endl;
-    if (implicit && implicit->meshfree_basis())
-      {
-        const auto &counts = implicit->meshfree_basis()->statistics();
-        pcout << "meshfree: " << implicit->node_cloud()->size() << " nodes, "
-              << counts.evaluations << " shape-function evaluations, "
-              << counts.radius_growths
-              << " of them with a larger radius (nodes added), "
-              << counts.retries << " retries" << std::endl;
-      }
+    scheme->print_statistics();
     timer.print_wall_time_statistics(communicator);
   }
 

@@ -1,6 +1,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <mpm/core/input_error.h>
+#include <mpm/core/parse.h>
 #include <mpm/output/time_series.h>
 
 #include <filesystem>
@@ -10,15 +11,42 @@
 namespace mpm
 {
   template <int dim>
-  TimeSeries<dim>::TimeSeries(const std::string &            filename,
-                              const std::vector<Point<dim>> &tracked_positions,
-                              const Tensor<1, dim> &         gravity,
-                              const MaterialPoints<dim> &    points,
-                              const bool                     continued)
-    : filename(filename)
-    , gravity(gravity)
+  void
+  TimeSeries<dim>::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Output");
+    prm.declare_entry("Time series file", "time_series.csv",
+                      Patterns::Anything(),
+                      "CSV file (in the output directory) with time, "
+                      "energies, momentum, mass, centre of mass and tracked "
+                      "points.");
+    prm.declare_entry("Time series interval", "0", Patterns::Double(0.),
+                      "Simulated time between rows of the time series; 0 "
+                      "writes every step.");
+    prm.declare_entry("Tracked points", "", Patterns::Anything(),
+                      "Positions, ';'-separated; the material point nearest "
+                      "to each at the start is followed in the time series.");
+    prm.leave_subsection();
+  }
+
+
+
+  template <int dim>
+  TimeSeries<dim>::TimeSeries(ParameterHandler &         prm,
+                              const std::string &        directory,
+                              const Tensor<1, dim> &     gravity,
+                              const MaterialPoints<dim> &points,
+                              const bool                 continued)
+    : gravity(gravity)
     , communicator(points.get_communicator())
   {
+    prm.enter_subsection("Output");
+    filename     = directory + "/" + prm.get("Time series file");
+    row_interval = prm.get_double("Time series interval");
+    const std::vector<Point<dim>> tracked_positions =
+      parse_point_list<dim>(prm.get("Tracked points"), "Output/Tracked points");
+    prm.leave_subsection();
+
     // The tracked point is the nearest one; ties go to the smaller id.
     for (const Point<dim> &target : tracked_positions)
       {

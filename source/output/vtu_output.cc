@@ -86,14 +86,38 @@ namespace mpm
 
 
   template <int dim>
-  VtuOutput<dim>::VtuOutput(const std::string &directory,
-                            const bool         write_grid,
+  void
+  VtuOutput<dim>::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Output");
+    prm.declare_entry("Write ParaView output", "true", Patterns::Bool(),
+                      "Write snapshots of points (and grid) for ParaView. "
+                      "Off for throughput measurements.");
+    prm.declare_entry("Interval", "0", Patterns::Double(0.),
+                      "Simulated time between ParaView snapshots. 0 writes "
+                      "the first and the last state only.");
+    prm.declare_entry("Write grid", "true", Patterns::Bool(),
+                      "Also write the background grid with nodal mass, "
+                      "velocity and acceleration.");
+    prm.leave_subsection();
+  }
+
+
+
+  template <int dim>
+  VtuOutput<dim>::VtuOutput(ParameterHandler & prm,
+                            const std::string &directory,
                             const MPI_Comm     communicator)
     : directory(directory.empty() || directory.back() == '/' ? directory :
                                                                  directory + "/")
-    , write_grid(write_grid)
     , communicator(communicator)
-  {}
+  {
+    prm.enter_subsection("Output");
+    write_paraview    = prm.get_bool("Write ParaView output");
+    snapshot_interval = prm.get_double("Interval");
+    write_grid        = prm.get_bool("Write grid");
+    prm.leave_subsection();
+  }
 
 
 

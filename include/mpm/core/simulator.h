@@ -19,8 +19,7 @@
 #include <mpm/output/time_series.h>
 #include <mpm/output/vtu_output.h>
 #include <mpm/points/material_points.h>
-#include <mpm/time/explicit_integrator.h>
-#include <mpm/time/implicit_integrator.h>
+#include <mpm/time/time_scheme.h>
 
 #include <limits>
 #include <memory>
@@ -32,9 +31,11 @@ namespace mpm
   using namespace dealii;
 
   /**
-   * Owns everything a run needs (grid, points, materials, output, timers)
-   * and runs the explicit time loop. A scene is described entirely by the
-   * ParameterHandler it is built from.
+   * Owns everything a run needs (grid, points, materials, output, timers),
+   * builds the time scheme the scene names and runs the time loop: a step
+   * of the scheme, the sort of the points, the output that is due, a
+   * checkpoint. A scene is described entirely by the ParameterHandler it is
+   * built from.
    */
   template <int dim>
   class Simulator
@@ -93,70 +94,19 @@ namespace mpm
     void
     serialize(Archive &archive, const unsigned int);
 
-    /** The largest point speed and signal speed (Material::signal_speed). */
-    struct Speeds
-    {
-      double point  = 0.;
-      double signal = 0.;
-    };
-
-    /** Speeds of the points as they are, over all ranks. */
-    Speeds
-    current_speeds() const;
-
-    /**
-     * The smallest cell edge over the sum of the speeds: the largest stable
-     * explicit step (infinite if nothing moves or is stiff).
-     */
-    double
-    stability_limit(const Speeds &speeds) const;
-
-    /**
-     * The CFL number times the stability limit; throws RunError if that is
-     * not a positive number.
-     */
-    double
-    stable_time_step(const Speeds &speeds) const;
-
     /** Times closer than this to End time count as the end. */
     double
     end_time_tolerance() const
     {
-      return 1e-12 * end_time;
+      return scheme->end_time_tolerance();
     }
-
-    /** "Time stepping/Time step = ... exceeds the ... limit (why)". */
-    std::string
-    fixed_step_beyond(const double limit) const;
-
-    void
-    check_step(const typename ExplicitIntegrator<dim>::StepReport &report,
-               const double                                         dt);
 
     void
     report_progress(const bool force);
 
-    /**
-     * One explicit step of size dt; returns the speeds after it. A fixed
-     * Time step that the state has outgrown (a stiffening law) stops the
-     * run.
-     */
-    Speeds
-    explicit_step();
-
-    /**
-     * One implicit step of size dt (a load step, or a Newmark time step),
-     * cut in half (up to 4 times) if Newton does not converge.
-     */
+    /** The grid output (and the node cloud's) of the current state. */
     void
-    implicit_step();
-
-    /**
-     * The size of an implicit step before cuts: the Newmark Time step, or
-     * End time over the number of load steps.
-     */
-    double
-    implicit_step_size() const;
+    write_snapshot();
 
     const MPI_Comm     communicator;
     ConditionalOStream pcout;
@@ -174,9 +124,7 @@ namespace mpm
     std::unique_ptr<PointSeeder<dim>>         seeder;
     std::unique_ptr<PointLoads<dim>>          loads;
     std::unique_ptr<GridTransfer<dim>>        transfer;
-    std::unique_ptr<ExplicitIntegrator<dim>>  integrator;
-    std::unique_ptr<ImplicitIntegrator<dim>>  implicit;
-    bool                                      dynamic_implicit = false;
+    std::unique_ptr<TimeScheme<dim>>          scheme;
     std::unique_ptr<VtuOutput<dim>>           vtu_output;
     std::unique_ptr<TimeSeries<dim>>          time_series;
     std::unique_ptr<Checkpoint>               checkpoint;
@@ -184,25 +132,12 @@ namespace mpm
 
     Tensor<1, dim> gravity;
     double         end_time;
-    double         fixed_time_step;
-    double         cfl_number;
-    unsigned int   n_load_steps;
-    std::string    output_directory;
-    bool           write_paraview;
-    double         output_interval;
-    bool           write_grid;
-    double         time_series_interval;
-    std::string    time_series_file;
-    std::vector<Point<dim>> tracked_positions;
 
     double           time     = 0.;
     unsigned int     step     = 0;
     double           dt       = 0.;
-    Speeds           speeds;
     double           next_output      = 0.;
     double           next_time_series = 0.;
-    /** After a cut, the implicit step grows back by doubling. */
-    double           next_implicit_step = 0.;
     Diagnostics<dim> diagnostics;
     Timer            wall_clock;
     double           last_progress_wall = 0.;

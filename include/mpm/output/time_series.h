@@ -1,6 +1,7 @@
 #ifndef mpm_output_time_series_h
 #define mpm_output_time_series_h
 
+#include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/point.h>
 
 #include <boost/serialization/split_member.hpp>
@@ -52,11 +53,26 @@ namespace mpm
      * the file where the checkpoint left it; otherwise the file is written
      * anew, header first.
      */
-    TimeSeries(const std::string &             filename,
-               const std::vector<Point<dim>> &tracked_positions,
-               const Tensor<1, dim> &          gravity,
-               const MaterialPoints<dim> &     points,
-               const bool                      continued);
+    /** `Time series file`, `Time series interval` and `Tracked points`. */
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    /**
+     * Parse the `Output` subsection (the handler is at top level); the file
+     * goes into `directory`.
+     */
+    TimeSeries(ParameterHandler &         prm,
+               const std::string &        directory,
+               const Tensor<1, dim> &     gravity,
+               const MaterialPoints<dim> &points,
+               const bool                 continued);
+
+    /** Simulated time between rows; 0: every step. */
+    double
+    interval() const
+    {
+      return row_interval;
+    }
 
     /** Compute the diagnostics and write a row (rank 0 writes). */
     Diagnostics<dim>
@@ -85,7 +101,8 @@ namespace mpm
     void
     continue_file(const std::uint64_t length);
 
-    const std::string                             filename;
+    std::string                                   filename;
+    double                                        row_interval;
     const Tensor<1, dim>                          gravity;
     const MPI_Comm                                communicator;
     // mutable: save() asks it for its length, and tellp() is not const.

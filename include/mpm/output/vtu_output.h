@@ -2,6 +2,7 @@
 #define mpm_output_vtu_output_h
 
 #include <deal.II/base/data_out_base.h>
+#include <deal.II/base/parameter_handler.h>
 #include <deal.II/fe/mapping.h>
 
 #include <boost/serialization/string.hpp>
@@ -31,9 +32,31 @@ namespace mpm
   class VtuOutput
   {
   public:
-    VtuOutput(const std::string &directory,
-              const bool         write_grid,
+    /** `Write ParaView output`, `Interval` and `Write grid`. */
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    /**
+     * Parse the `Output` subsection (the handler is at top level); files go
+     * into `directory`.
+     */
+    VtuOutput(ParameterHandler & prm,
+              const std::string &directory,
               const MPI_Comm     communicator);
+
+    /** Whether snapshots are written at all. */
+    bool
+    enabled() const
+    {
+      return write_paraview;
+    }
+
+    /** Simulated time between snapshots; 0: the first and the last only. */
+    double
+    interval() const
+    {
+      return snapshot_interval;
+    }
 
     void
     write(const double               time,
@@ -79,7 +102,9 @@ namespace mpm
       const std::vector<std::pair<double, std::string>> &records) const;
 
     const std::string directory;
-    const bool        write_grid;
+    bool              write_paraview;
+    double            snapshot_interval;
+    bool              write_grid;
     const MPI_Comm    communicator;
     unsigned int      counter = 0;
 

@@ -1,0 +1,299 @@
+#include <deal.II/base/mpi.h>
+
+#include <mpm/core/input_error.h>
+#include <mpm/core/shared_position.h>
+#include <mpm/time/explicit_scheme.h>
+
+#include <cmath>
+#include <sstream>
+
+namespace mpm
+{
+  template <int dim>
+  void
+  ExplicitScheme<dim>::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Time stepping");
+    prm.declare_entry("CFL number", "0.3", Patterns::Double(0., 1.),
+                      "Fraction of the stability limit used by the automatic "
+                      "time step, 0 < CFL <= 1.");
+    prm.declare_entry("Update scheme", "MUSL",
+                      Patterns::Selection("USF|USL|MUSL"),
+                      "Order of the explicit update: USF (update stress "
+                      "first), USL (update stress last), MUSL (modified USL, "
+                      "Wieckowski 2004 section 3.5).");
+    prm.declare_entry("PIC fraction", "0", Patterns::Double(0., 1.),
+                      "Explicit: share of the PIC velocity, N (v + dt a), in "
+                      "the point velocity update; the rest is FLIP, v_p + dt "
+                      "N a. 0 is pure FLIP, as [W], which conserves energy "
+                      "but keeps point velocities the grid cannot see (in a "
+                      "settled granular deposit they never die out). A few "
+                      "percent damps them within tens of steps at the cost "
+                      "of a little dissipation; 1 is pure PIC, strongly "
+                      "dissipative.");
+    prm.leave_subsection();
+  }
+
+
+
+  namespace
+  {
+    /** An entry of `Time stepping`. */
+    std::string
+    time_stepping_entry(ParameterHandler &prm, const std::string &entry)
+    {
+      prm.enter_subsection("Time stepping");
+      const std::string value = prm.get(entry);
+      prm.leave_subsection();
+      return value;
+    }
+
+    double
+    time_stepping_number(ParameterHandler &prm, const std::string &entry)
+    {
+      prm.enter_subsection("Time stepping");
+      const double value = prm.get_double(entry);
+      prm.leave_subsection();
+      return value;
+    }
+  } // namespace
+
+
+
+  template <int dim>
+  ExplicitScheme<dim>::ExplicitScheme(
+    ParameterHandler &                         prm,
+    const typename TimeScheme<dim>::Scene &scene)
+    : TimeScheme<dim>(prm, scene)
+    , cfl_number(time_stepping_number(prm, "CFL number"))
+    , integrator(scene.transfer,
+                 scene.materials,
+                 ExplicitIntegrator<dim>::parse_scheme(
+                   time_stepping_entry(prm, "Update scheme")),
+                 time_stepping_number(prm, "PIC fraction"),
+                 scene.grid.minimum_cell_size(),
+                 scene.timer)
+  {
+    if (!(cfl_number > 0.))
+      throw InputError("Time stepping/CFL number must be positive.");
+  }
+
+
+
+  template <int dim>
+  void
+  ExplicitScheme<dim>::check_start() const
+  {
+    if (this->fixed_time_step > 0.)
+      {
+        const double limit = stability_limit(current_speeds());
+        if (this->fixed_time_step > limit)
+          throw InputError(fixed_step_beyond(limit) +
+                           ". Use a smaller step, or 0 for an automatic one.");
+      }
+  }
+
+
+
+  template <int dim>
+  void
+  ExplicitScheme<dim>::start()
+  {
+    speeds = current_speeds();
+  }
+
+
+
+  template <int dim>
+  double
+  ExplicitScheme<dim>::advance(const double time, const unsigned int step)
+  {
+    const double end = this->end_time();
+    double       dt  = this->fixed_time_step > 0. ? this->fixed_time_step :
+                                                    stable_time_step(speeds);
+    if (time + dt > end + this->end_time_tolerance())
+      dt = end - time;
+
+    this->scene.transfer.set_load_factor(this->scene.loads.load_factor(time));
+    const auto     report = integrator.step(dt);
+    check_step(report, time, step, dt);
+    const MPI_Comm communicator = this->scene.points.get_communicator();
+    speeds.point  = Utilities::MPI::max(report.max_speed, communicator);
+    speeds.signal = Utilities::MPI::max(report.max_signal_speed, communicator);
+
+    // A fixed Time step that the state has outgrown (a stiffening law)
+    // stops the run.
+    const bool last_step = time + dt >= end - this->end_time_tolerance();
+    if (this->fixed_time_step > 0. && !last_step)
+      {
+        const double limit = stability_limit(speeds);
+        if (this->fixed_time_step > limit)
+          {
+            std::ostringstream message;
+            message << "After step " << step + 1 << " (t = " << time + dt
+                    << ") " << fixed_step_beyond(limit)
+                    << ": the material has stiffened or the points have sped "
+                       "up. The last good state is in the output written so "
+                       "far. Use a smaller step, or 0 for an automatic one.";
+            throw RunError(message.str());
+          }
+      }
+    return dt;
+  }
+
+
+
+  template <int dim>
+  typename ExplicitScheme<dim>::Speeds
+  ExplicitScheme<dim>::current_speeds() const
+  {
+    using Layout = PointLayout<dim>;
+    Speeds speeds;
+    for (const auto &particle : this->scene.points.handler())
+      {
+        const ArrayView<const double> p = particle.get_properties();
+        const Material &              material =
+          *this->scene.materials[static_cast<unsigned int>(
+            p[Layout::material_id])];
+        speeds.point = std::max(speeds.point, Layout::get_velocity(p).norm());
+        speeds.signal =
+          std::max(speeds.signal,
+                   material.signal_speed(
+                     Layout::get_stress(p),
+                     ArrayView<const double>(&p[Layout::internal_variables],
+                                             material.n_internal_variables()),
+                     this->scene.grid.minimum_cell_size()));
+      }
+    const MPI_Comm communicator = this->scene.points.get_communicator();
+    speeds.point  = Utilities::MPI::max(speeds.point, communicator);
+    speeds.signal = Utilities::MPI::max(speeds.signal, communicator);
+    return speeds;
+  }
+
+
+
+  template <int dim>
+  double
+  ExplicitScheme<dim>::stability_limit(const Speeds &speeds) const
+  {
+    return this->scene.grid.minimum_cell_size() /
+           (speeds.signal + speeds.point);
+  }
+
+
+
+  template <int dim>
+  double
+  ExplicitScheme<dim>::stable_time_step(const Speeds &speeds) const
+  {
+    const double step = cfl_number * stability_limit(speeds);
+    // Every rank has the same speeds, so every rank throws.
+    if (!(step > 0. && std::isfinite(step)))
+      throw RunError("The explicit time step is not defined: the largest "
+                     "signal speed is " + std::to_string(speeds.signal) +
+                     " m/s and the fastest point moves at " +
+                     std::to_string(speeds.point) +
+                     " m/s (every point has come apart and rests, or a law "
+                     "overflowed).");
+    return step;
+  }
+
+
+
+  template <int dim>
+  std::string
+  ExplicitScheme<dim>::fixed_step_beyond(const double limit) const
+  {
+    std::ostringstream message;
+    message << "Time stepping/Time step = " << this->fixed_time_step
+            << " exceeds the explicit stability limit " << limit
+            << " (smallest cell edge " << this->scene.grid.minimum_cell_size()
+            << " over the largest signal speed plus the fastest point)";
+    return message.str();
+  }
+
+
+
+  template <int dim>
+  void
+  ExplicitScheme<dim>::check_step(
+    const typename ExplicitIntegrator<dim>::StepReport &report,
+    const double                                         time,
+    const unsigned int                                   step,
+    const double                                         dt) const
+  {
+    const MPI_Comm communicator = this->scene.points.get_communicator();
+    // Every rank takes part, so every rank throws the same error.
+    const bool failed = Utilities::MPI::logical_or(report.failed, communicator);
+    if (failed)
+      {
+        // The reason of the point that is named, so the text is the same
+        // on any number of ranks.
+        const auto [where, rank] = shared_position_and_rank(
+          report.failed, report.failed_position, communicator);
+        const std::string reason = Utilities::MPI::all_gather(
+          communicator, report.failed ? report.failure : std::string())[rank];
+        std::ostringstream message;
+        message << "The run went unstable in step " << step + 1 << " (t = "
+                << time + dt << ", dt = " << dt << "): " << reason << ", at "
+                << where
+                << ". The last good state is in the output written so far. "
+                   "Try a smaller Time stepping/CFL number or Time step.";
+        throw RunError(message.str());
+      }
+
+    const double max_fraction =
+      Utilities::MPI::max(report.max_cell_fraction, communicator);
+    if (max_fraction > 1.)
+      {
+        const std::string where =
+          shared_position(report.max_cell_fraction >=
+                            max_fraction * (1. - 1e-12),
+                          report.fastest_position,
+                          communicator);
+        std::ostringstream message;
+        message << "In step " << step + 1 << " (t = " << time + dt
+                << ", dt = " << dt << ") the material point at " << where
+                << " would move " << max_fraction
+                << " cell widths, more than the one cell a step allows. "
+                   "Reduce Time stepping/Time step or CFL number.";
+        throw RunError(message.str());
+      }
+  }
+
+
+
+  template <int dim>
+  std::vector<std::string>
+  ExplicitScheme<dim>::entries_that_may_change() const
+  {
+    // A continued run may go on further, or with smaller steps (after a
+    // run that went unstable).
+    return {"Time stepping/End time",
+            "Time stepping/Time step",
+            "Time stepping/CFL number"};
+  }
+
+
+
+  template <int dim>
+  void
+  ExplicitScheme<dim>::save(boost::archive::binary_oarchive &archive) const
+  {
+    archive << speeds.point << speeds.signal;
+  }
+
+
+
+  template <int dim>
+  void
+  ExplicitScheme<dim>::load(boost::archive::binary_iarchive &archive)
+  {
+    archive >> speeds.point >> speeds.signal;
+  }
+
+
+
+  template class ExplicitScheme<2>;
+  template class ExplicitScheme<3>;
+} // namespace mpm

@@ -1,0 +1,64 @@
+#include <mpm/core/input_error.h>
+#include <mpm/time/time_scheme.h>
+
+namespace mpm
+{
+  template <int dim>
+  void
+  TimeScheme<dim>::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Time stepping");
+    prm.declare_entry("Scheme", "explicit",
+                      Patterns::Selection("explicit|quasi-static|Newmark"),
+                      "explicit: dynamic explicit MPM with the Update "
+                      "scheme below. quasi-static: equilibrium in Load steps "
+                      "over the pseudo-time End time, loads and gravity "
+                      "ramped with Loads/Load factor (t / End time unless "
+                      "given), solved by Newton (see "
+                      "Newton). Newmark: implicit dynamic MPM with the fixed "
+                      "Time step, solved by Newton (see Newton, Newmark).");
+    prm.declare_entry("End time", "1", Patterns::Double(0.),
+                      "Simulated time at which the run ends [s].");
+    prm.declare_entry("Time step", "0", Patterns::Double(0.),
+                      "Fixed time step [s]. 0 chooses every step from the "
+                      "CFL number: dt = CFL h / (c + |v|_max), with h the "
+                      "smallest cell edge and c the largest signal speed of "
+                      "the points (the p-wave speed of their current "
+                      "stiffness, plus a viscous term for a law with bulk "
+                      "viscosity). A fixed step above the stability limit "
+                      "h / (c + |v|_max) is refused at the start, and stops "
+                      "the run if the state outgrows it later.");
+    prm.leave_subsection();
+  }
+
+
+
+  template <int dim>
+  std::string
+  TimeScheme<dim>::scheme_name(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Time stepping");
+    const std::string name = prm.get("Scheme");
+    prm.leave_subsection();
+    return name;
+  }
+
+
+
+  template <int dim>
+  TimeScheme<dim>::TimeScheme(ParameterHandler &prm, const Scene &scene)
+    : scene(scene)
+  {
+    prm.enter_subsection("Time stepping");
+    final_time      = prm.get_double("End time");
+    fixed_time_step = prm.get_double("Time step");
+    prm.leave_subsection();
+    if (!(final_time > 0.))
+      throw InputError("Time stepping/End time must be positive.");
+  }
+
+
+
+  template class TimeScheme<2>;
+  template class TimeScheme<3>;
+} // namespace mpm
