@@ -98,7 +98,7 @@ namespace mpm
         properties[Layout::reference_volume] = c.volume;
         for (unsigned int d = 0; d < dim; ++d)
           properties[Layout::reference_size + d] = c.size[d];
-        const Tensor<1, dim> v               = bodies[c.body].initial_velocity(c.x);
+        const Tensor<1, dim> v = bodies[c.body].initial_velocity(c.x);
         for (unsigned int d = 0; d < dim; ++d)
           {
             properties[Layout::velocity + d] = v[d];
@@ -149,7 +149,8 @@ namespace mpm
         const ArrayView<const double> p = particle.get_properties();
         double                        half_extent = 0.;
         for (unsigned int d = 0; d < dim; ++d)
-          half_extent += 0.5 * std::abs(down[d]) * p[Layout::reference_size + d];
+          half_extent +=
+            0.5 * std::abs(down[d]) * p[Layout::reference_size + d];
         double &body_top = top[static_cast<unsigned int>(p[Layout::body_id])];
         body_top =
           std::max(body_top, -(down * particle.get_location()) + half_extent);
@@ -167,7 +168,8 @@ namespace mpm
     for (auto &particle : points.handler())
       {
         const ArrayView<double> p    = particle.get_properties();
-        const unsigned int      body = static_cast<unsigned int>(p[Layout::body_id]);
+        const unsigned int body =
+          static_cast<unsigned int>(p[Layout::body_id]);
         if (!bodies[body].geostatic() || !refusal.empty())
           continue;
         const Material &material =
@@ -175,7 +177,8 @@ namespace mpm
         const double depth = top[body] + down * particle.get_location();
         const double sigma_v = -material.density() * gravity.norm() * depth;
         const SymmetricTensor<2, 3> stress =
-          bodies[body].k0() * sigma_v * (unit_symmetric_tensor<3>() - vertical) +
+          bodies[body].k0() * sigma_v *
+            (unit_symmetric_tensor<3>() - vertical) +
           sigma_v * vertical;
         Layout::set_stress(p, stress);
         try

@@ -1,0 +1,147 @@
+#ifndef mpm_time_grid_system_h
+#define mpm_time_grid_system_h
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/hp/fe_collection.h>
+
+#include <boost/serialization/set.hpp>
+
+#include <mpm/basis/grid_basis.h>
+#include <mpm/boundary/dirichlet_conditions.h>
+#include <mpm/grid/grid.h>
+#include <mpm/time/implicit_system.h>
+
+#include <set>
+
+namespace mpm
+{
+  using namespace dealii;
+
+  /**
+   * The unknowns of implicit MPM on the background grid: FE_Q(1)^dim on
+   * the cells that hold points and FE_Nothing elsewhere (hp), so the
+   * matrix stays regular and its size follows the material; one point
+   * group per cell, its supports from GridBasis; the grid conditions as
+   * constraints, with the active set of the contact walls.
+   */
+  template <int dim>
+  class GridSystem : public ImplicitSystem<dim>
+  {
+  public:
+    /** `Newton/Integration`, the quadrature of full cells. */
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    GridSystem(ParameterHandler &              prm,
+               MaterialPoints<dim> &           points,
+               const Grid<dim> &               grid,
+               const GridBasis<dim> &          basis,
+               const DirichletConditions<dim> &dirichlet,
+               ConditionalOStream &            pcout);
+
+    void
+    setup(ImplicitState<dim> &state) override;
+
+    bool
+    has_active_set() const override
+    {
+      return dirichlet.has_contact();
+    }
+
+    bool
+    update_active_set(ImplicitState<dim> &state) override;
+
+    void
+    remember_active_set() override
+    {
+      engaged_before = engaged_contact_nodes;
+    }
+
+    void
+    restore_active_set() override
+    {
+      engaged_contact_nodes = engaged_before;
+    }
+
+    /**
+     * The contact nodes that hold the material. They are numbered on this
+     * rank, so a checkpoint is continued on as many ranks.
+     */
+    void
+    save(boost::archive::binary_oarchive &archive) const override
+    {
+      archive << engaged_contact_nodes;
+    }
+
+    void
+    load(boost::archive::binary_iarchive &archive) override
+    {
+      archive >> engaged_contact_nodes;
+    }
+
+  private:
+    /** One group per cell that holds points. */
+    void
+    build_cell_groups(ImplicitState<dim> &state) const;
+
+    /**
+     * Factor on the point volumes of a cell in the quadrature of the
+     * internal force (see the Integration parameter).
+     */
+    double
+    quadrature_scale(
+      const typename DoFHandler<dim>::active_cell_iterator &cell) const;
+
+    /**
+     * Grid conditions on the nodes of active cells as constraints; contact
+     * nodes only while engaged.
+     */
+    void
+    make_constraints(ImplicitState<dim> &state) const;
+
+    /**
+     * Call f(cell, vertex, node, constraint) for each vertex with a grid
+     * condition of each locally owned cell that holds points.
+     */
+    template <typename Function>
+    void
+    for_each_constrained_vertex(const Function &f) const;
+
+    /** Call f(node, first dof, constraint) once per contact node. */
+    template <typename Function>
+    void
+    for_each_contact_node(const Function &f) const;
+
+    /**
+     * Per contact node (at its first dof, ghosted): nonzero where material
+     * touches the wall, that is a point in an adjacent cell lies closer to
+     * the wall than half its spacing. After a solve, at the points' new
+     * positions and only for points that moved towards the wall.
+     */
+    TrilinosWrappers::MPI::Vector
+    contact_gaps(const ImplicitState<dim> &state, const bool after_solve) const;
+
+    const Grid<dim> &               grid;
+    const GridBasis<dim> &          basis;
+    const DirichletConditions<dim> &dirichlet;
+    ConditionalOStream &            pcout;
+    bool                            scale_full_cells;
+
+    hp::FECollection<dim> fe_collection;
+    DoFHandler<dim>       dof_handler;
+
+    /**
+     * The contact nodes (Grid node ids, stable while the grid does not
+     * change) that hold the material. A step starts from the previous
+     * step's set.
+     */
+    std::set<unsigned int> engaged_contact_nodes;
+    /** Contact nodes that changed state in this step. */
+    std::set<unsigned int> changed_contact_nodes;
+    std::set<unsigned int> engaged_before;
+  };
+} // namespace mpm
+
+#endif

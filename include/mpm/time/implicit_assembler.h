@@ -1,0 +1,92 @@
+#ifndef mpm_time_implicit_assembler_h
+#define mpm_time_implicit_assembler_h
+
+#include <deal.II/base/tensor.h>
+#include <deal.II/lac/full_matrix.h>
+
+#include <mpm/materials/material.h>
+#include <mpm/points/material_points.h>
+#include <mpm/time/implicit_state.h>
+#include <mpm/time/newmark.h>
+
+#include <memory>
+#include <utility>
+#include <vector>
+
+namespace mpm
+{
+  using namespace dealii;
+
+  /**
+   * The residual f_ext - f_int (- inertia) and the tangent of an implicit
+   * step, point by point through PointAssembly, for whichever basis made
+   * the groups of the ImplicitState: MPM and the meshfree method share it.
+   */
+  template <int dim>
+  class ImplicitAssembler
+  {
+  public:
+    ImplicitAssembler(const MaterialPoints<dim> &                   points,
+                      const std::vector<std::unique_ptr<Material>> &materials,
+                      const Tensor<1, dim> &                        gravity,
+                      const Newmark &                               newmark);
+
+    /**
+     * Residual f_ext - f_int into state.residual (f_ext into
+     * state.correction, for the force scale), and the tangent if asked.
+     * A point inverted by the iterate throws RunError.
+     */
+    void
+    assemble(ImplicitState<dim> &state,
+             const double        load_factor,
+             const bool          with_tangent);
+
+    /**
+     * What the law sees of a step with deformation increment dF from F_n:
+     * F_new = dF F_n, and the velocity gradient L = (dF - I) / dt over the
+     * step (or load step, in pseudo-time), so rate laws see their rate.
+     */
+    static StepKinematics
+    step_kinematics(const Tensor<2, dim> &dF,
+                    const Tensor<2, dim> &F_n,
+                    const double          dt)
+    {
+      StepKinematics k;
+      k.F_old             = PointLayout<dim>::embed(F_n, 1.);
+      k.F_new             = PointLayout<dim>::embed(dF * F_n, 1.);
+      k.dt                = dt;
+      k.velocity_gradient = (PointLayout<dim>::embed(dF, 1.) -
+                             Tensor<2, 3>(unit_symmetric_tensor<3>())) /
+                            dt;
+      return k;
+    }
+
+  private:
+    /**
+     * Add a group's matrix into the tangent when all its dofs are owned
+     * here and unconstrained, and return true; otherwise leave it to
+     * AffineConstraints and return false. Epetra's SumIntoGlobalValues
+     * maps and searches every entry: with the meshfree supports (48 x 48
+     * entries a point for LME 1.8) that was most of an assembly. Here each
+     * column is mapped once, and each row is searched in one sweep.
+     */
+    bool
+    add_to_tangent(ImplicitState<dim> &                        state,
+                   const std::vector<types::global_dof_index> &dofs,
+                   const FullMatrix<double> &                  matrix);
+
+    const MaterialPoints<dim> &                   points;
+    const std::vector<std::unique_ptr<Material>> &materials;
+    const Tensor<1, dim>                          gravity;
+    const Newmark &                               newmark;
+
+    /**
+     * Scratch of add_to_tangent: a group's local columns, sorted, and
+     * where each of them sits in the current row.
+     */
+    std::vector<std::pair<int, unsigned int>> tangent_columns;
+    std::vector<int>                          tangent_offsets;
+  };
+} // namespace mpm
+
+#endif
