@@ -21,7 +21,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
-#include <mpm/core/input_error.h>
+#include <mpm/base/input_error.h>
 #include <mpm/materials/wieckowski_granular.h>
 
 #include <cmath>

@@ -194,7 +194,11 @@ test()
                        std::abs(volume - 1.) < 1e-3);
     point_momentum = Utilities::MPI::sum(point_momentum, comm);
 
-    GridTransfer<dim> transfer(points, basis, nodes, dirichlet, Tensor<1, dim>());
+    GridTransfer<dim> transfer(points,
+                               basis,
+                               nodes,
+                               {&dirichlet},
+                               Tensor<1, dim>());
     transfer.project_mass_momentum(false);
 
     // Sum over owned nodes only, so that shared nodes count once.

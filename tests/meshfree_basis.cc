@@ -22,7 +22,7 @@
 #include <deal.II/base/point.h>
 
 #include <mpm/basis/meshfree_basis.h>
-#include <mpm/core/input_error.h>
+#include <mpm/base/input_error.h>
 
 #include <random>
 

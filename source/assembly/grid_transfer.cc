@@ -3,15 +3,16 @@
 namespace mpm
 {
   template <int dim>
-  GridTransfer<dim>::GridTransfer(MaterialPoints<dim> &           points,
-                                  const GridBasis<dim> &          basis,
-                                  GridNodes<dim> &                nodes,
-                                  const DirichletConditions<dim> &dirichlet,
-                                  const Tensor<1, dim> &          gravity)
+  GridTransfer<dim>::GridTransfer(
+    MaterialPoints<dim> &                           points,
+    const GridBasis<dim> &                          basis,
+    GridNodes<dim> &                                nodes,
+    const std::vector<const NodalCondition<dim> *> &conditions,
+    const Tensor<1, dim> &                          gravity)
     : points(points)
     , basis(basis)
     , nodes(nodes)
-    , dirichlet(dirichlet)
+    , conditions(conditions)
     , gravity(gravity)
   {}
 
@@ -120,7 +121,9 @@ namespace mpm
           v[NodalLayout::velocity + d] =
             m > 0. ? v[NodalLayout::velocity + d] / m : 0.;
         if (constrain)
-          dirichlet.apply(node, v + NodalLayout::velocity);
+          for (const NodalCondition<dim> *condition : conditions)
+            if (condition->acts_on(node))
+              condition->constrain_velocity(node, v + NodalLayout::velocity);
       }
   }
 
@@ -139,27 +142,15 @@ namespace mpm
         double *     velocity = v + NodalLayout::velocity;
         for (unsigned int d = 0; d < dim; ++d)
           a[d] = m > 0. ? a[d] / m : 0.;
-        dirichlet.apply(node, a);
-        if (dt > 0. && dirichlet.constraint_of(node) != nullptr)
-          {
-            // Add the acceleration that takes the projected velocity v to
-            // the constrained P v (at a wall, the reaction impulse over dt),
-            // so that v + dt a = P v + dt P a. Constraining a alone would
-            // leave a point near a wall with the velocity it had before the
-            // wall stopped its nodes, a velocity the grid no longer has.
-            double constrained[dim];
-            for (unsigned int d = 0; d < dim; ++d)
-              constrained[d] = velocity[d];
-            dirichlet.apply(node, constrained);
-            for (unsigned int d = 0; d < dim; ++d)
-              {
-                const double impulse = (constrained[d] - velocity[d]) / dt;
-                if (advance_velocity)
-                  velocity[d] = constrained[d] + dt * a[d];
-                a[d] += impulse;
-              }
-          }
-        else if (advance_velocity)
+        bool constrained = false;
+        for (const NodalCondition<dim> *condition : conditions)
+          if (condition->acts_on(node))
+            {
+              condition->constrain_explicit(
+                node, m, velocity, a, dt, time, advance_velocity);
+              constrained = true;
+            }
+        if (!constrained && advance_velocity)
           for (unsigned int d = 0; d < dim; ++d)
             velocity[d] += dt * a[d];
       }

@@ -1,7 +1,7 @@
 #include <deal.II/base/symmetric_tensor.h>
 
 #include <mpm/basis/meshfree_basis.h>
-#include <mpm/core/input_error.h>
+#include <mpm/base/input_error.h>
 
 #include <Eigen/Dense>
 

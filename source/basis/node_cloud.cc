@@ -1,5 +1,5 @@
 #include <mpm/basis/node_cloud.h>
-#include <mpm/core/input_error.h>
+#include <mpm/base/input_error.h>
 
 #include <map>
 
@@ -28,7 +28,6 @@ namespace mpm
       }
     velocities.resize(positions.size());
     accelerations.resize(positions.size());
-    engaged_walls.assign(positions.size(), 0u);
 
     // The walls, from the boundary faces that carry a condition.
     using Kind = typename DirichletConditions<dim>::WallKind;

@@ -3,8 +3,8 @@
 #include <deal.II/base/quadrature_lib.h>
 
 #include <mpm/bodies/body.h>
-#include <mpm/core/input_error.h>
-#include <mpm/core/parse.h>
+#include <mpm/base/input_error.h>
+#include <mpm/base/parse.h>
 
 #include <algorithm>
 #include <iostream>

@@ -1,7 +1,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <mpm/bodies/point_seeder.h>
-#include <mpm/core/input_error.h>
+#include <mpm/base/input_error.h>
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <mpm/boundary/dirichlet_conditions.h>
-#include <mpm/core/input_error.h>
+#include <mpm/base/input_error.h>
 
 #include <algorithm>
 #include <map>
@@ -198,6 +198,82 @@ namespace mpm
                        "plane, tilt the gravity instead (see "
                        "prm/rolling_disk.prm).");
   }
+
+
+  template <int dim>
+  void
+  DirichletConditions<dim>::constrain_explicit(const unsigned int node,
+                                               const double,
+                                               double *     velocity,
+                                               double *     a,
+                                               const double dt,
+                                               const double,
+                                               const bool advance_velocity) const
+  {
+    apply(node, a);
+    if (!(dt > 0.))
+      return;
+    double constrained[dim];
+    for (unsigned int d = 0; d < dim; ++d)
+      constrained[d] = velocity[d];
+    apply(node, constrained);
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        const double impulse = (constrained[d] - velocity[d]) / dt;
+        if (advance_velocity)
+          velocity[d] = constrained[d] + dt * a[d];
+        a[d] += impulse;
+      }
+  }
+
+
+
+  template <int dim>
+  bool
+  DirichletConditions<dim>::add_constraints(
+    const unsigned int                              node,
+    const std::array<types::global_dof_index, dim> &dofs,
+    const bool                                      held,
+    AffineConstraints<double> &                     constraints) const
+  {
+    const Constraint &constraint = *constraint_of(node);
+    // A free contact node keeps no slip along the wall, which a body
+    // rolling without slip satisfies on the whole line of the wall; only
+    // its normal motion is free.
+    const bool free_contact = constraint.unilateral && !held;
+    if (free_contact || constraint.n_normals == dim)
+      {
+        for (unsigned int a = 0; a < dim; ++a)
+          if ((!free_contact || std::abs(constraint.outward[a]) < 0.5) &&
+              !constraints.is_constrained(dofs[a]))
+            constraints.add_line(dofs[a]);
+        return true;
+      }
+    bool supported = true;
+    for (unsigned int k = 0; k < constraint.n_normals; ++k)
+      {
+        const Tensor<1, dim> &n     = constraint.normals[k];
+        unsigned int          pivot = 0;
+        for (unsigned int a = 1; a < dim; ++a)
+          if (std::abs(n[a]) > std::abs(n[pivot]))
+            pivot = a;
+        if (constraints.is_constrained(dofs[pivot]))
+          continue;
+        const bool along_axis = std::abs(std::abs(n[pivot]) - 1.) < 1e-12;
+        if (!along_axis && constraint.n_normals > 1)
+          {
+            supported = false;
+            continue;
+          }
+        constraints.add_line(dofs[pivot]);
+        if (!along_axis)
+          for (unsigned int a = 0; a < dim; ++a)
+            if (a != pivot)
+              constraints.add_entry(dofs[pivot], dofs[a], -n[a] / n[pivot]);
+      }
+    return supported;
+  }
+
 
 
 

@@ -1,8 +1,8 @@
 #include <deal.II/base/mpi.h>
 
 #include <mpm/boundary/point_loads.h>
-#include <mpm/core/input_error.h>
-#include <mpm/core/parse.h>
+#include <mpm/base/input_error.h>
+#include <mpm/base/parse.h>
 
 #include <cmath>
 

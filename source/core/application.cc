@@ -3,7 +3,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <mpm/core/application.h>
-#include <mpm/core/input_error.h>
+#include <mpm/base/input_error.h>
 #include <mpm/core/named_sections.h>
 #include <mpm/core/simulator.h>
 

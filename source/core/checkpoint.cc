@@ -1,5 +1,5 @@
 #include <mpm/core/checkpoint.h>
-#include <mpm/core/input_error.h>
+#include <mpm/base/input_error.h>
 
 #include <boost/crc.hpp>
 #include <boost/serialization/map.hpp>

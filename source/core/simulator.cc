@@ -1,7 +1,7 @@
 #include <deal.II/base/mpi.h>
 
-#include <mpm/core/input_error.h>
-#include <mpm/core/parse.h>
+#include <mpm/base/input_error.h>
+#include <mpm/base/parse.h>
 #include <mpm/core/simulator.h>
 #include <mpm/time/explicit_scheme.h>
 #include <mpm/time/implicit_scheme.h>
@@ -185,7 +185,11 @@ namespace mpm
                        "the shapes in Bodies against Grid/Arguments.");
 
     transfer = std::make_unique<GridTransfer<dim>>(
-      *points, *basis, *nodes, *dirichlet, gravity);
+      *points,
+      *basis,
+      *nodes,
+      std::vector<const NodalCondition<dim> *>{dirichlet.get()},
+      gravity);
     const typename TimeScheme<dim>::Scene scene{
       *grid, *points, *transfer, materials, *loads, pcout, timer};
     if (scheme_name == "explicit")

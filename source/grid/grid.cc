@@ -6,7 +6,7 @@
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_in.h>
 
-#include <mpm/core/input_error.h>
+#include <mpm/base/input_error.h>
 #include <mpm/grid/grid.h>
 
 #include <fstream>

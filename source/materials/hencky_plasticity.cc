@@ -1,4 +1,4 @@
-#include <mpm/core/input_error.h>
+#include <mpm/base/input_error.h>
 #include <mpm/materials/hencky_plasticity.h>
 
 #include <cmath>

@@ -1,7 +1,7 @@
 #include <deal.II/lac/full_matrix.h>
 
-#include <mpm/core/input_error.h>
-#include <mpm/core/parse.h>
+#include <mpm/base/input_error.h>
+#include <mpm/base/parse.h>
 #include <mpm/materials/mohr_coulomb.h>
 
 #include <algorithm>

@@ -1,7 +1,7 @@
 #include <deal.II/base/mpi.h>
 
-#include <mpm/core/input_error.h>
-#include <mpm/core/parse.h>
+#include <mpm/base/input_error.h>
+#include <mpm/base/parse.h>
 #include <mpm/output/time_series.h>
 
 #include <filesystem>

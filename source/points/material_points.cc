@@ -5,8 +5,8 @@
 #include <boost/serialization/array.hpp>
 #include <boost/serialization/vector.hpp>
 
-#include <mpm/core/input_error.h>
-#include <mpm/core/shared_position.h>
+#include <mpm/base/input_error.h>
+#include <mpm/base/shared_position.h>
 #include <mpm/points/material_points.h>
 
 #include <algorithm>

@@ -1,6 +1,6 @@
 #include <deal.II/base/mpi.h>
 
-#include <mpm/core/input_error.h>
+#include <mpm/base/input_error.h>
 #include <mpm/time/cloud_system.h>
 
 #include <Eigen/Dense>
@@ -33,7 +33,7 @@ namespace mpm
   void
   CloudSystem<dim>::setup(ImplicitState<dim> &state)
   {
-    changed_walls.clear();
+    cloud.held_by_walls.begin_step();
     {
       TimerOutput::Scope t(timer, "meshfree shape functions");
       meshfree->reinit(cloud.positions);
@@ -279,14 +279,13 @@ namespace mpm
     // so the nodes alone cannot tell; and a held node far from the
     // material would be a pivot that levers the body off the wall.
     // The cloud lives on one rank.
-    // A node may be held by several walls (at a corner); each
-    // (node, wall) pair changes at most once per step.
+    // A node may be held by several walls (at a corner); the active set
+    // changes each (node, wall) pair at most once per step.
     const unsigned int n_walls = cloud.walls.size();
     for (unsigned int i = 0; i < cloud.size(); ++i)
       for (unsigned int w = 0; w < n_walls; ++w)
         {
           if (!cloud.is_held_by(i, w) ||
-              changed_walls.count(i * n_walls + w) > 0 ||
               cloud.walls[w].kind !=
                 DirichletConditions<dim>::WallKind::contact)
             continue;
@@ -294,12 +293,7 @@ namespace mpm
           for (unsigned int a = 0; a < dim; ++a)
             pull -= residual_at_nodes(i * dim + a) *
                     cloud.walls[w].outward[a];
-          if (pull > 0.)
-            {
-              cloud.engaged_walls[i] &= ~(1u << w);
-              changed_walls.insert(i * n_walls + w);
-              ++released;
-            }
+          released += cloud.held_by_walls.release_if_pulling(i, w, pull);
         }
     for (const auto &group : state.groups)
       {
@@ -322,15 +316,10 @@ namespace mpm
               {
                 const unsigned int node = support.nodes[k];
                 const Point<dim> &x_node = cloud.positions[node];
-                if (!cloud.is_held_by(node, w) &&
-                    changed_walls.count(node * n_walls + w) == 0 &&
-                    c.offset - c.outward * x_node < reach &&
-                    x_node.distance(x_new) < cloud.spacing())
-                  {
-                    cloud.engaged_walls[node] |= 1u << w;
-                    changed_walls.insert(node * n_walls + w);
-                    ++engaged;
-                  }
+                if (c.offset - c.outward * x_node < reach &&
+                    x_node.distance(x_new) < cloud.spacing() &&
+                    cloud.held_by_walls.engage(node, w))
+                  ++engaged;
               }
           }
       }

@@ -1,7 +1,7 @@
 #include <deal.II/base/mpi.h>
 
-#include <mpm/core/input_error.h>
-#include <mpm/core/shared_position.h>
+#include <mpm/base/input_error.h>
+#include <mpm/base/shared_position.h>
 #include <mpm/time/explicit_scheme.h>
 
 #include <cmath>
@@ -115,6 +115,7 @@ namespace mpm
       dt = end - time;
 
     this->scene.transfer.set_load_factor(this->scene.loads.load_factor(time));
+    this->scene.transfer.set_time(time);
     const auto     report = integrator.step(dt);
     check_step(report, time, step, dt);
     const MPI_Comm communicator = this->scene.points.get_communicator();

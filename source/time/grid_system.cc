@@ -5,7 +5,7 @@
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/lac/sparsity_tools.h>
 
-#include <mpm/core/input_error.h>
+#include <mpm/base/input_error.h>
 #include <mpm/time/grid_system.h>
 
 #include <cmath>
@@ -38,12 +38,13 @@ namespace mpm
                               MaterialPoints<dim> &           points,
                               const Grid<dim> &               grid,
                               const GridBasis<dim> &          basis,
-                              const DirichletConditions<dim> &dirichlet,
+                              const std::vector<const NodalCondition<dim> *>
+                                &conditions,
                               ConditionalOStream &            pcout)
     : ImplicitSystem<dim>(points)
     , grid(grid)
     , basis(basis)
-    , dirichlet(dirichlet)
+    , conditions(conditions)
     , pcout(pcout)
     , dof_handler(points.get_triangulation())
   {
@@ -60,7 +61,7 @@ namespace mpm
   void
   GridSystem<dim>::setup(ImplicitState<dim> &state)
   {
-    changed_contact_nodes.clear();
+    contact.begin_step();
     // Unknowns only on cells that hold points.
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -72,7 +73,7 @@ namespace mpm
 
     // Contact nodes stay engaged into the new step only while material
     // still touches them.
-    if (dirichlet.has_contact())
+    if (has_active_set())
       {
         const TrilinosWrappers::MPI::Vector touching =
           contact_gaps(state, false);
@@ -80,7 +81,7 @@ namespace mpm
           [&](const unsigned int node, const types::global_dof_index dof0,
               const auto &) {
             if (touching(dof0) == 0.)
-              engaged_contact_nodes.erase(node);
+              contact.let_go(node, 0);
           });
       }
     make_constraints(state);
@@ -163,49 +164,16 @@ namespace mpm
     state.constraints.reinit(state.relevant_dofs);
     bool unsupported_corner = false;
     DoFTools::make_hanging_node_constraints(dof_handler, state.constraints);
-    for_each_constrained_vertex([&](const auto &        cell,
-                                    const unsigned int  v,
-                                    const unsigned int  node,
-                                    const auto &        constraint) {
+    for_each_constrained_vertex([&](const auto &                cell,
+                                    const unsigned int          v,
+                                    const unsigned int          node,
+                                    const NodalCondition<dim> &condition) {
       std::array<types::global_dof_index, dim> dofs;
       for (unsigned int a = 0; a < dim; ++a)
         dofs[a] = cell->vertex_dof_index(v, a, 0);
-      // A free contact node keeps no slip along the wall, which a body
-      // rolling without slip satisfies on the whole line of the wall; only
-      // its normal motion is free.
-      const bool free_contact =
-        constraint.unilateral && engaged_contact_nodes.count(node) == 0;
-      if (free_contact || constraint.n_normals == dim)
-        {
-          for (unsigned int a = 0; a < dim; ++a)
-            if ((!free_contact || std::abs(constraint.outward[a]) < 0.5) &&
-                !state.constraints.is_constrained(dofs[a]))
-              state.constraints.add_line(dofs[a]);
-          return;
-        }
-      for (unsigned int k = 0; k < constraint.n_normals; ++k)
-        {
-          const Tensor<1, dim> &n     = constraint.normals[k];
-          unsigned int          pivot = 0;
-          for (unsigned int a = 1; a < dim; ++a)
-            if (std::abs(n[a]) > std::abs(n[pivot]))
-              pivot = a;
-          if (state.constraints.is_constrained(dofs[pivot]))
-            continue;
-          const bool along_axis = std::abs(std::abs(n[pivot]) - 1.) < 1e-12;
-          if (!along_axis && constraint.n_normals > 1)
-            {
-              unsupported_corner = true;
-              continue;
-            }
-          state.constraints.add_line(dofs[pivot]);
-          if (!along_axis)
-            for (unsigned int a = 0; a < dim; ++a)
-              if (a != pivot)
-                state.constraints.add_entry(dofs[pivot],
-                                            dofs[a],
-                                            -n[a] / n[pivot]);
-        }
+      if (!condition.add_constraints(
+            node, dofs, contact.holds(node, 0), state.constraints))
+        unsupported_corner = true;
     });
     // Decided on all ranks together, so that all stop.
     if (Utilities::MPI::logical_or(unsupported_corner,
@@ -232,8 +200,9 @@ namespace mpm
           {
             const unsigned int node =
               grid.node_of(cell->active_cell_index(), v);
-            if (const auto *constraint = dirichlet.constraint_of(node))
-              f(cell, v, node, *constraint);
+            for (const NodalCondition<dim> *condition : conditions)
+              if (condition->acts_on(node))
+                f(cell, v, node, *condition);
           }
       }
   }
@@ -246,12 +215,13 @@ namespace mpm
   GridSystem<dim>::for_each_contact_node(const Function &f) const
   {
     std::set<unsigned int> visited;
-    for_each_constrained_vertex([&](const auto &        cell,
-                                    const unsigned int  v,
-                                    const unsigned int  node,
-                                    const auto &        constraint) {
-      if (constraint.unilateral && visited.insert(node).second)
-        f(node, cell->vertex_dof_index(v, 0, 0), constraint);
+    for_each_constrained_vertex([&](const auto &                cell,
+                                    const unsigned int          v,
+                                    const unsigned int          node,
+                                    const NodalCondition<dim> &condition) {
+      const Tensor<1, dim> *outward = condition.unilateral_normal(node);
+      if (outward != nullptr && visited.insert(node).second)
+        f(node, cell->vertex_dof_index(v, 0, 0), *outward);
     });
   }
 
@@ -274,16 +244,18 @@ namespace mpm
       {
         if (!cell->is_locally_owned() || cell->active_fe_index() != 0)
           continue;
-        std::vector<
-          std::pair<unsigned int,
-                    const typename DirichletConditions<dim>::Constraint *>>
+        // (vertex, outward normal of its unilateral wall)
+        std::vector<std::pair<unsigned int, const Tensor<1, dim> *>>
           contact_vertices;
         for (const unsigned int v : cell->vertex_indices())
           {
-            const auto *c = dirichlet.constraint_of(
-              grid.node_of(cell->active_cell_index(), v));
-            if (c != nullptr && c->unilateral)
-              contact_vertices.emplace_back(v, c);
+            const unsigned int node =
+              grid.node_of(cell->active_cell_index(), v);
+            for (const NodalCondition<dim> *condition : conditions)
+              if (condition->acts_on(node))
+                if (const Tensor<1, dim> *outward =
+                      condition->unilateral_normal(node))
+                  contact_vertices.emplace_back(v, outward);
           }
         if (contact_vertices.empty())
           continue;
@@ -304,11 +276,11 @@ namespace mpm
                     x[a] += support.N[i] *
                             state.displacement_ghosted(dofs[i * dim + a]);
               }
-            for (const auto &[v, c] : contact_vertices)
+            for (const auto &[v, outward] : contact_vertices)
               {
                 const double gap_before =
-                  (cell->vertex(v) - particle.get_location()) * c->outward;
-                const double gap = (cell->vertex(v) - x) * c->outward;
+                  (cell->vertex(v) - particle.get_location()) * *outward;
+                const double gap = (cell->vertex(v) - x) * *outward;
                 if (gap < reach && (!after_solve || gap < gap_before))
                   flags(cell->vertex_dof_index(v, 0, 0)) += 1.;
               }
@@ -340,30 +312,22 @@ namespace mpm
     // alike; each node is counted by the owner of its first dof.
     for_each_contact_node([&](const unsigned int            node,
                               const types::global_dof_index dof0,
-                              const auto &                  constraint) {
-      if (changed_contact_nodes.count(node) > 0)
+                              const Tensor<1, dim> &        outward) {
+      if (contact.has_changed(node, 0))
         return;
       const bool counted = state.owned_dofs.is_element(dof0);
-      if (engaged_contact_nodes.count(node) > 0)
+      if (contact.holds(node, 0))
         {
           // The wall force on the material is minus the out-of-balance
           // force; it pulls when it points out of the grid.
           double pull = 0.;
           for (unsigned int a = 0; a < dim; ++a)
-            pull -= residual_at_nodes(dof0 + a) * constraint.outward[a];
-          if (pull > 0.)
-            {
-              engaged_contact_nodes.erase(node);
-              changed_contact_nodes.insert(node);
-              released += counted;
-            }
+            pull -= residual_at_nodes(dof0 + a) * outward[a];
+          if (contact.release_if_pulling(node, 0, pull))
+            released += counted;
         }
-      else if (closing(dof0) > 0.)
-        {
-          engaged_contact_nodes.insert(node);
-          changed_contact_nodes.insert(node);
-          engaged += counted;
-        }
+      else if (closing(dof0) > 0. && contact.engage(node, 0))
+        engaged += counted;
     });
     released = Utilities::MPI::sum(released, comm);
     engaged  = Utilities::MPI::sum(engaged, comm);

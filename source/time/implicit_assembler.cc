@@ -4,7 +4,7 @@
 #include <Epetra_CrsMatrix.h>
 
 #include <mpm/assembly/point_assembly.h>
-#include <mpm/core/input_error.h>
+#include <mpm/base/input_error.h>
 #include <mpm/time/implicit_assembler.h>
 
 #include <algorithm>

@@ -1,5 +1,5 @@
 #include <mpm/assembly/point_assembly.h>
-#include <mpm/core/input_error.h>
+#include <mpm/base/input_error.h>
 #include <mpm/time/cloud_system.h>
 #include <mpm/time/grid_system.h>
 #include <mpm/time/implicit_integrator.h>
@@ -38,7 +38,12 @@ namespace mpm
         return std::make_unique<CloudSystem<dim>>(
           points, grid, dirichlet, std::move(meshfree), newmark, pcout, timer);
       return std::make_unique<GridSystem<dim>>(
-        prm, points, grid, basis, dirichlet, pcout);
+        prm,
+        points,
+        grid,
+        basis,
+        std::vector<const NodalCondition<dim> *>{&dirichlet},
+        pcout);
     }
   } // namespace
 

@@ -1,4 +1,4 @@
-#include <mpm/core/input_error.h>
+#include <mpm/base/input_error.h>
 #include <mpm/time/newmark.h>
 
 #include <string>

@@ -5,7 +5,7 @@
 
 #include <mpm/assembly/grid_nodes.h>
 #include <mpm/basis/grid_basis.h>
-#include <mpm/boundary/dirichlet_conditions.h>
+#include <mpm/boundary/nodal_condition.h>
 #include <mpm/points/material_points.h>
 
 namespace mpm
@@ -25,11 +25,12 @@ namespace mpm
     using Layout      = PointLayout<dim>;
     using NodalLayout = typename GridNodes<dim>::NodalLayout;
 
-    GridTransfer(MaterialPoints<dim> &           points,
-                 const GridBasis<dim> &          basis,
-                 GridNodes<dim> &                nodes,
-                 const DirichletConditions<dim> &dirichlet,
-                 const Tensor<1, dim> &          gravity);
+    /** `conditions` act at the nodes in the nodal solve, in this order. */
+    GridTransfer(MaterialPoints<dim> &                          points,
+                 const GridBasis<dim> &                         basis,
+                 GridNodes<dim> &                               nodes,
+                 const std::vector<const NodalCondition<dim> *> &conditions,
+                 const Tensor<1, dim> &                         gravity);
 
     /**
      * Call f(particle, support) for every local point, points of one cell
@@ -61,6 +62,13 @@ namespace mpm
       load_factor = factor;
     }
 
+    /** The time at the start of the step, for conditions that change. */
+    void
+    set_time(const double t)
+    {
+      time = t;
+    }
+
     /**
      * Lumped mass and momentum on the nodes, and, if `with_force`, the
      * internal force -sum V_p sigma_p grad N plus the external force
@@ -79,16 +87,16 @@ namespace mpm
 
     /**
      * v = p / m on every node (0 where m = 0), then, if `constrain`, the
-     * velocity conditions.
+     * nodal conditions.
      */
     void
     compute_nodal_velocity(const bool constrain = true);
 
     /**
-     * a = f / m on every node, corrected so that v + dt a meets the velocity
-     * conditions, where v is the nodal velocity as it stands (constrained or
-     * not); if `advance_velocity`, also v += dt a. With dt = 0 the
-     * conditions act on a alone.
+     * a = f / m on every node, corrected by the nodal conditions so that
+     * v + dt a meets them, where v is the nodal velocity as it stands
+     * (constrained or not); if `advance_velocity`, also v += dt a. With
+     * dt = 0 the conditions act on a alone.
      */
     void
     compute_nodal_acceleration(const double dt, const bool advance_velocity);
@@ -130,9 +138,10 @@ namespace mpm
     MaterialPoints<dim> &           points;
     const GridBasis<dim> &          basis;
     GridNodes<dim> &                nodes;
-    const DirichletConditions<dim> &dirichlet;
-    const Tensor<1, dim>            gravity;
-    double                          load_factor = 1.;
+    const std::vector<const NodalCondition<dim> *> conditions;
+    const Tensor<1, dim>                           gravity;
+    double                                         load_factor = 1.;
+    double                                         time        = 0.;
   };
 } // namespace mpm
 

@@ -6,6 +6,7 @@
 
 #include <boost/serialization/vector.hpp>
 
+#include <mpm/boundary/contact_active_set.h>
 #include <mpm/boundary/dirichlet_conditions.h>
 #include <mpm/grid/grid.h>
 #include <mpm/points/material_points.h>
@@ -84,15 +85,15 @@ namespace mpm
 
     std::vector<Wall> walls;
     /**
-     * Per node, the walls that the material has brought it to, bit w for
-     * walls[w]. Kept from step to step.
+     * The (node, wall) pairs that the material has brought to a wall, by
+     * the index of the wall in `walls`. Kept from step to step.
      */
-    std::vector<unsigned int> engaged_walls;
+    ContactActiveSet held_by_walls;
 
     bool
     is_held_by(const unsigned int i, const unsigned int w) const
     {
-      return (engaged_walls[i] >> w) & 1u;
+      return held_by_walls.holds(i, w);
     }
 
     /**
@@ -104,7 +105,7 @@ namespace mpm
     void
     serialize(Archive &archive, const unsigned int)
     {
-      archive &positions &velocities &accelerations &engaged_walls
+      archive &positions &velocities &accelerations &held_by_walls
         &has_history;
     }
 

@@ -4,6 +4,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/tensor.h>
 
+#include <mpm/boundary/nodal_condition.h>
 #include <mpm/grid/grid.h>
 
 #include <algorithm>
@@ -26,7 +27,7 @@ namespace mpm
    * on a contact face is a contact node.
    */
   template <int dim>
-  class DirichletConditions
+  class DirichletConditions : public NodalCondition<dim>
   {
   public:
     static void
@@ -43,12 +44,66 @@ namespace mpm
      * grid; again after the grid changed.
      */
     void
-    setup();
+    setup() override;
+
+    bool
+    has_unilateral_nodes() const override
+    {
+      return has_contact();
+    }
+
+    bool
+    acts_on(const unsigned int node) const override
+    {
+      return constraint_of_node[node] >= 0;
+    }
+
+    void
+    constrain_velocity(const unsigned int node,
+                       double *           velocity) const override
+    {
+      apply(node, velocity);
+    }
 
     /**
-     * Remove the constrained components of a nodal vector (velocity or
-     * acceleration) of `node`, which starts at `vector_at_node`.
+     * Constrain a and add the acceleration that takes the projected
+     * velocity v to the constrained P v (at a wall, the reaction impulse
+     * over dt), so that v + dt a = P v + dt P a. Constraining a alone would
+     * leave a point near a wall with the velocity it had before the wall
+     * stopped its nodes, a velocity the grid no longer has.
      */
+    void
+    constrain_explicit(const unsigned int node,
+                       const double       mass,
+                       double *           velocity,
+                       double *           acceleration,
+                       const double       dt,
+                       const double       time,
+                       const bool         advance_velocity) const override;
+
+    /**
+     * A fixed or held contact node: every component; a contact node that
+     * is not held keeps no slip along its wall; a slip node: the normal
+     * component of each wall, fixed on a wall along an axis and tied to
+     * the others on a slanted one (not at corners of slanted walls).
+     */
+    bool
+    add_constraints(const unsigned int                              node,
+                    const std::array<types::global_dof_index, dim> &dofs,
+                    const bool                                      held,
+                    AffineConstraints<double> &constraints) const override;
+
+    const Tensor<1, dim> *
+    unilateral_normal(const unsigned int node) const override
+    {
+      const Constraint *constraint = constraint_of(node);
+      return constraint != nullptr && constraint->unilateral ?
+               &constraint->outward :
+               nullptr;
+    }
+
+  private:
+    /** The projection of constrain_velocity(). */
     void
     apply(const unsigned int node, double *vector_at_node) const
     {
@@ -72,6 +127,7 @@ namespace mpm
         }
     }
 
+  public:
     /** The directions a node may not move in. */
     struct Constraint
     {

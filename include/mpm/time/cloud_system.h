@@ -60,13 +60,13 @@ namespace mpm
     void
     remember_active_set() override
     {
-      engaged_before = cloud.engaged_walls;
+      cloud.held_by_walls.remember();
     }
 
     void
     restore_active_set() override
     {
-      cloud.engaged_walls = engaged_before;
+      cloud.held_by_walls.restore();
     }
 
     /** The nodes take the step's displacement and Newmark update. */
@@ -118,10 +118,6 @@ namespace mpm
     const Newmark &                     newmark;
     ConditionalOStream &                pcout;
     TimerOutput &                       timer;
-
-    /** (node, wall) pairs, as node * n_walls + wall, changed this step. */
-    std::set<unsigned int>    changed_walls;
-    std::vector<unsigned int> engaged_before;
   };
 } // namespace mpm
 

@@ -5,7 +5,7 @@
 #include <deal.II/base/timer.h>
 
 #include <mpm/assembly/grid_transfer.h>
-#include <mpm/core/shared_position.h>
+#include <mpm/base/shared_position.h>
 #include <mpm/materials/material.h>
 
 #include <memory>

@@ -6,14 +6,12 @@
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/hp/fe_collection.h>
 
-#include <boost/serialization/set.hpp>
-
 #include <mpm/basis/grid_basis.h>
-#include <mpm/boundary/dirichlet_conditions.h>
+#include <mpm/boundary/contact_active_set.h>
+#include <mpm/boundary/nodal_condition.h>
 #include <mpm/grid/grid.h>
 #include <mpm/time/implicit_system.h>
 
-#include <set>
 
 namespace mpm
 {
@@ -34,12 +32,13 @@ namespace mpm
     static void
     declare_parameters(ParameterHandler &prm);
 
-    GridSystem(ParameterHandler &              prm,
-               MaterialPoints<dim> &           points,
-               const Grid<dim> &               grid,
-               const GridBasis<dim> &          basis,
-               const DirichletConditions<dim> &dirichlet,
-               ConditionalOStream &            pcout);
+    /** `conditions` act at the nodes, as constraints. */
+    GridSystem(ParameterHandler &                              prm,
+               MaterialPoints<dim> &                           points,
+               const Grid<dim> &                               grid,
+               const GridBasis<dim> &                          basis,
+               const std::vector<const NodalCondition<dim> *> &conditions,
+               ConditionalOStream &                            pcout);
 
     void
     setup(ImplicitState<dim> &state) override;
@@ -47,7 +46,10 @@ namespace mpm
     bool
     has_active_set() const override
     {
-      return dirichlet.has_contact();
+      for (const NodalCondition<dim> *condition : conditions)
+        if (condition->has_unilateral_nodes())
+          return true;
+      return false;
     }
 
     bool
@@ -56,13 +58,13 @@ namespace mpm
     void
     remember_active_set() override
     {
-      engaged_before = engaged_contact_nodes;
+      contact.remember();
     }
 
     void
     restore_active_set() override
     {
-      engaged_contact_nodes = engaged_before;
+      contact.restore();
     }
 
     /**
@@ -72,13 +74,13 @@ namespace mpm
     void
     save(boost::archive::binary_oarchive &archive) const override
     {
-      archive << engaged_contact_nodes;
+      archive << contact;
     }
 
     void
     load(boost::archive::binary_iarchive &archive) override
     {
-      archive >> engaged_contact_nodes;
+      archive >> contact;
     }
 
   private:
@@ -102,14 +104,17 @@ namespace mpm
     make_constraints(ImplicitState<dim> &state) const;
 
     /**
-     * Call f(cell, vertex, node, constraint) for each vertex with a grid
-     * condition of each locally owned cell that holds points.
+     * Call f(cell, vertex, node, condition) for each vertex of each locally
+     * owned cell that holds points, for each condition that acts on it.
      */
     template <typename Function>
     void
     for_each_constrained_vertex(const Function &f) const;
 
-    /** Call f(node, first dof, constraint) once per contact node. */
+    /**
+     * Call f(node, first dof, outward normal) once per node of a
+     * unilateral wall.
+     */
     template <typename Function>
     void
     for_each_contact_node(const Function &f) const;
@@ -125,7 +130,7 @@ namespace mpm
 
     const Grid<dim> &               grid;
     const GridBasis<dim> &          basis;
-    const DirichletConditions<dim> &dirichlet;
+    const std::vector<const NodalCondition<dim> *> conditions;
     ConditionalOStream &            pcout;
     bool                            scale_full_cells;
 
@@ -134,13 +139,10 @@ namespace mpm
 
     /**
      * The contact nodes (Grid node ids, stable while the grid does not
-     * change) that hold the material. A step starts from the previous
-     * step's set.
+     * change; wall 0) that hold the material. A step starts from the
+     * previous step's set.
      */
-    std::set<unsigned int> engaged_contact_nodes;
-    /** Contact nodes that changed state in this step. */
-    std::set<unsigned int> changed_contact_nodes;
-    std::set<unsigned int> engaged_before;
+    ContactActiveSet contact;
   };
 } // namespace mpm
 

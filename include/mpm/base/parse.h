@@ -1,11 +1,11 @@
-#ifndef mpm_core_parse_h
-#define mpm_core_parse_h
+#ifndef mpm_base_parse_h
+#define mpm_base_parse_h
 
 #include <deal.II/base/function_parser.h>
 #include <deal.II/base/point.h>
 #include <deal.II/base/utilities.h>
 
-#include <mpm/core/input_error.h>
+#include <mpm/base/input_error.h>
 
 #include <iostream>
 #include <memory>

@@ -1,5 +1,5 @@
-#ifndef mpm_core_shared_position_h
-#define mpm_core_shared_position_h
+#ifndef mpm_base_shared_position_h
+#define mpm_base_shared_position_h
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/point.h>

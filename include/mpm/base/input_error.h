@@ -1,5 +1,5 @@
-#ifndef mpm_core_input_error_h
-#define mpm_core_input_error_h
+#ifndef mpm_base_input_error_h
+#define mpm_base_input_error_h
 
 #include <deal.II/base/mpi.h>
 
