@@ -159,7 +159,7 @@ test()
     bodies.emplace_back(prm, "body", "body", std::vector<std::string>{"steel"});
     prm.leave_subsection();
 
-    MaterialPoints<dim> points(tria, mapping, {}, false);
+    MaterialPoints<dim> points(grid, {}, false);
     PointSeeder<dim> seeder(grid);
     seeder.seed(bodies, materials, points);
     using Layout = PointLayout<dim>;

@@ -12,7 +12,9 @@ namespace mpm
     : grid(grid)
     , system_element(FE_Q<dim>(1), NodalLayout::n_components)
     , system_dof_handler(grid.get_triangulation())
-  {}
+  {
+    grid_changed = grid.changed.connect([this]() { setup(); });
+  }
 
 
 

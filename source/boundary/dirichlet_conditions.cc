@@ -58,6 +58,7 @@ namespace mpm
     for (const auto &name : contact_names)
       contact_ids.push_back(
         grid.boundary_id(name, "Boundary conditions/Contact boundaries"));
+    grid_changed = grid.changed.connect([this]() { setup(); });
   }
 
 

@@ -131,12 +131,12 @@ namespace mpm
                        "stepping/Scheme = explicit use Fixed or Slip "
                        "boundaries.");
 
-    // Set up the grid and everything on it.
+    // Set up the grid and everything on it (the conditions find their
+    // nodes when the grid announces itself).
     grid->create();
     nodes = std::make_unique<GridNodes<dim>>(*grid);
     nodes->setup();
     basis = std::make_unique<GridBasis<dim>>(*grid);
-    dirichlet->setup();
 
     // Every point carries as many internal variables as the largest law
     // needs, named after that law. Laws that share a variable keep it at
@@ -162,8 +162,7 @@ namespace mpm
                            "scene cannot hold both: the point output would "
                            "name them wrongly.");
       }
-    points = std::make_unique<MaterialPoints<dim>>(grid->get_triangulation(),
-                                                   grid->get_mapping(),
+    points = std::make_unique<MaterialPoints<dim>>(*grid,
                                                    internal_names,
                                                    scheme_name != "explicit");
     seeder = std::make_unique<PointSeeder<dim>>(*grid);

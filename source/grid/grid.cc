@@ -130,8 +130,12 @@ namespace mpm
   void
   Grid<dim>::refine_globally(const unsigned int n)
   {
-    triangulation.refine_global(n);
-    update();
+    for (unsigned int k = 0; k < n; ++k)
+      {
+        before_change();
+        triangulation.refine_global(1);
+        update();
+      }
   }
 
 

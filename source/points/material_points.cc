@@ -48,13 +48,12 @@ namespace mpm
 
   template <int dim>
   MaterialPoints<dim>::MaterialPoints(
-    const parallel::distributed::Triangulation<dim> &tria,
-    const Mapping<dim> &                             mapping,
-    const std::vector<std::string> &                 internal_variable_names,
-    const bool                                       implicit_fields)
-    : triangulation(tria)
-    , mapping(mapping)
-    , particle_handler(tria,
+    const Grid<dim> &               grid,
+    const std::vector<std::string> &internal_variable_names,
+    const bool                      implicit_fields)
+    : triangulation(grid.get_triangulation())
+    , mapping(grid.get_mapping())
+    , particle_handler(triangulation,
                        mapping,
                        Layout::n_properties(internal_variable_names.size()) +
                          (implicit_fields ? 2 * dim : 0))
@@ -66,6 +65,21 @@ namespace mpm
              const typename Triangulation<dim>::active_cell_iterator &) {
         lost_positions.push_back(particle->get_location());
       });
+    // Carried into the refined cells by deal.II's transfer, before anything
+    // else rebuilds on the new grid.
+    before_grid_change = grid.before_change.connect([this]() {
+      particle_handler.prepare_for_coarsening_and_refinement();
+      grid_changing = true;
+    });
+    after_grid_change = grid.changed.connect(
+      [this]() {
+        if (!grid_changing)
+          return;
+        particle_handler.unpack_after_coarsening_and_refinement();
+        particle_handler.update_cached_numbers();
+        grid_changing = false;
+      },
+      boost::signals2::at_front);
   }
 
 

@@ -27,13 +27,13 @@ namespace mpm
     const std::vector<std::unique_ptr<Material>> &materials,
     const Scheme                                  scheme,
     const double                                  pic_fraction,
-    const double                                  cell_size,
+    const Grid<dim> &                             grid,
     TimerOutput &                                 timer)
     : transfer(transfer)
     , materials(materials)
     , scheme(scheme)
     , pic_fraction(pic_fraction)
-    , cell_size(cell_size)
+    , grid(grid)
     , timer(timer)
   {}
 
@@ -43,6 +43,7 @@ namespace mpm
   typename ExplicitIntegrator<dim>::StepReport
   ExplicitIntegrator<dim>::step(const double dt)
   {
+    cell_size = grid.minimum_cell_size();
     StepReport report;
     auto       timed = [this](const char *section, const auto &work) {
       TimerOutput::Scope scope(timer, section);

@@ -71,7 +71,7 @@ namespace mpm
                  ExplicitIntegrator<dim>::parse_scheme(
                    time_stepping_entry(prm, "Update scheme")),
                  time_stepping_number(prm, "PIC fraction"),
-                 scene.grid.minimum_cell_size(),
+                 scene.grid,
                  scene.timer)
   {
     if (!(cfl_number > 0.))

@@ -53,6 +53,8 @@ namespace mpm
     prm.leave_subsection();
     fe_collection.push_back(FESystem<dim>(FE_Q<dim>(1), dim));
     fe_collection.push_back(FESystem<dim>(FE_Nothing<dim>(), dim));
+    grid_changed =
+      grid.changed.connect([this]() { contact = ContactActiveSet(); });
   }
 
 

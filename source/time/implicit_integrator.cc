@@ -75,7 +75,7 @@ namespace mpm
                          newmark,
                          pcout,
                          timer))
-    , newton(prm, grid.minimum_cell_size(), pcout, timer)
+    , newton(prm, grid, pcout, timer)
     , newmark(prm, dynamic)
     , assembler(points, materials, gravity, newmark)
   {

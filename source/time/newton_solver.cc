@@ -76,10 +76,10 @@ namespace mpm
 
   template <int dim>
   NewtonSolver<dim>::NewtonSolver(ParameterHandler &  prm,
-                                  const double        cell_size,
+                                  const Grid<dim> &   grid,
                                   ConditionalOStream &pcout,
                                   TimerOutput &       timer)
-    : cell_size(cell_size)
+    : grid(grid)
     , pcout(pcout)
     , timer(timer)
   {
@@ -239,7 +239,7 @@ namespace mpm
       start_unconstrained_residual = state.unconstrained_residual;
     const double start_external_force_norm = state.external_force_norm;
 
-    const double probe_size = 3e-9 * cell_size;
+    const double probe_size = 3e-9 * grid.minimum_cell_size();
     TrilinosWrappers::MPI::Vector direction(state.displacement);
     for (const types::global_dof_index i : state.owned_dofs)
       direction[i] = probe_size * pseudo_random(i);

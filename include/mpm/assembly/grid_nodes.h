@@ -40,9 +40,10 @@ namespace mpm
       static constexpr unsigned int n_components = 1 + 2 * dim;
     };
 
+    /** Connects to Grid::changed, which calls setup() again. */
     explicit GridNodes(const Grid<dim> &grid);
 
-    /** Size the storage for the grid's nodes; again after the grid changed. */
+    /** Size the storage for the grid's nodes. */
     void
     setup();
 
@@ -129,6 +130,8 @@ namespace mpm
     std::vector<unsigned int> imported_nodes;
     std::vector<unsigned int> solve_nodes;
     bool                      full_projection = true;
+
+    boost::signals2::scoped_connection grid_changed;
   };
 } // namespace mpm
 

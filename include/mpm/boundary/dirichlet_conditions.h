@@ -35,14 +35,12 @@ namespace mpm
 
     /**
      * Parse the `Boundary conditions` subsection at top level; the names
-     * are the grid's boundary names.
+     * are the grid's boundary names. Connects to Grid::changed, which
+     * calls setup() (also when the grid is first created).
      */
     DirichletConditions(ParameterHandler &prm, const Grid<dim> &grid);
 
-    /**
-     * Find the constrained nodes of all locally relevant cells of the
-     * grid; again after the grid changed.
-     */
+    /** Find the constrained nodes of all locally relevant cells. */
     void
     setup() override;
 
@@ -191,6 +189,8 @@ namespace mpm
     /** Per node id: index into `constraints`, or -1. */
     std::vector<int>        constraint_of_node;
     std::vector<Constraint> constraints;
+
+    boost::signals2::scoped_connection grid_changed;
   };
 } // namespace mpm
 

@@ -68,7 +68,10 @@ namespace mpm
     void
     create();
 
-    /** Refine every cell `n` times; then number the nodes and fire `changed`. */
+    /**
+     * Refine every cell `n` times: fire `before_change`, refine, number the
+     * nodes and fire `changed`.
+     */
     void
     refine_globally(const unsigned int n);
 
@@ -86,10 +89,18 @@ namespace mpm
     }
 
     /**
-     * Fired after the grid changed and its nodes were numbered again: node
-     * ids and cell geometry are those of the new grid.
+     * Fired before the cells change (refinement), while the old cells
+     * still exist: the points save what they need to be carried across.
      */
-    boost::signals2::signal<void()> changed;
+    mutable boost::signals2::signal<void()> before_change;
+
+    /**
+     * Fired after the grid changed and its nodes were numbered again: node
+     * ids and cell geometry are those of the new grid. Whatever is keyed by
+     * node ids or cells rebuilds here; the points, connected at the front,
+     * are in their new cells first.
+     */
+    mutable boost::signals2::signal<void()> changed;
 
     /**
      * The boundary id of a named boundary; `entry` names the parameter that

@@ -7,6 +7,7 @@
 
 #include <boost/serialization/split_member.hpp>
 
+#include <mpm/grid/grid.h>
 #include <mpm/points/point_layout.h>
 
 #include <memory>
@@ -19,7 +20,8 @@ namespace mpm
   /**
    * The material points of a scene, stored in a Particles::ParticleHandler
    * with the properties of PointLayout. Points move with the cells across
-   * ranks when they are sorted. PointSeeder puts them in.
+   * ranks when they are sorted, and into the new cells when the grid
+   * changes (Grid::before_change, Grid::changed). PointSeeder puts them in.
    */
   template <int dim>
   class MaterialPoints
@@ -33,8 +35,7 @@ namespace mpm
      * acceleration and a point load (the implicit schemes need them), after
      * the internal variables.
      */
-    MaterialPoints(const parallel::distributed::Triangulation<dim> &tria,
-                   const Mapping<dim> &                             mapping,
+    MaterialPoints(const Grid<dim> &               grid,
                    const std::vector<std::string> &internal_variable_names,
                    const bool                      implicit_fields);
 
@@ -139,6 +140,11 @@ namespace mpm
 
     /** Filled by the particle_lost signal during a sort. */
     std::vector<Point<dim>> lost_positions;
+
+    /** Between Grid::before_change and Grid::changed. */
+    bool                                 grid_changing = false;
+    boost::signals2::scoped_connection before_grid_change;
+    boost::signals2::scoped_connection after_grid_change;
   };
 } // namespace mpm
 

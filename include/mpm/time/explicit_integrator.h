@@ -72,14 +72,15 @@ namespace mpm
 
     /**
      * `pic_fraction` is the share of the PIC velocity in the point velocity
-     * update (0: pure FLIP). `cell_size` is the smallest cell edge of the
-     * grid: no point may move farther in one step.
+     * update (0: pure FLIP). The grid's smallest cell edge, taken at the
+     * start of each step, is how far a point may move in one (and sizes
+     * the viscous limit of the signal speed).
      */
     ExplicitIntegrator(GridTransfer<dim> &                           transfer,
                        const std::vector<std::unique_ptr<Material>> &materials,
                        const Scheme                                  scheme,
                        const double                                  pic_fraction,
-                       const double                                  cell_size,
+                       const Grid<dim> &                             grid,
                        TimerOutput &                                 timer);
 
     /** Advance all points by dt; the points are not yet re-sorted. */
@@ -124,7 +125,9 @@ namespace mpm
     const std::vector<std::unique_ptr<Material>> &materials;
     const Scheme                                  scheme;
     const double                                  pic_fraction;
-    const double                                  cell_size;
+    const Grid<dim> &                             grid;
+    /** The grid's smallest cell edge in this step. */
+    double                                        cell_size = 0.;
     TimerOutput &                                 timer;
   };
 } // namespace mpm

@@ -143,6 +143,8 @@ namespace mpm
      * previous step's set.
      */
     ContactActiveSet contact;
+    /** A changed grid numbers its nodes anew: the contact set starts over. */
+    boost::signals2::scoped_connection grid_changed;
   };
 } // namespace mpm
 

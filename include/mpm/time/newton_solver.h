@@ -6,6 +6,7 @@
 #include <deal.II/base/timer.h>
 #include <deal.II/lac/solver_control.h>
 
+#include <mpm/grid/grid.h>
 #include <mpm/time/implicit_assembler.h>
 #include <mpm/time/implicit_state.h>
 
@@ -30,10 +31,10 @@ namespace mpm
 
     /**
      * Parse the `Newton` subsection (the handler is at top level).
-     * `cell_size`, the smallest cell edge, sizes the tangent check's probe.
+     * The grid's smallest cell edge sizes the tangent check's probe.
      */
     NewtonSolver(ParameterHandler &  prm,
-                 const double        cell_size,
+                 const Grid<dim> &   grid,
                  ConditionalOStream &pcout,
                  TimerOutput &       timer);
 
@@ -83,7 +84,7 @@ namespace mpm
     bool                line_search;
     bool                check_tangent;
     std::string         linear_solver;
-    const double        cell_size;
+    const Grid<dim> &   grid;
     ConditionalOStream &pcout;
     TimerOutput &       timer;
     /** A direct solve needs no tolerance, so its control logs nothing. */

@@ -1,0 +1,170 @@
+// The grid changes in the middle of a run: explicit MPM (MUSL) of a block
+// in free fall, the grid refined once globally after 10 steps, then 10
+// steps more, in 2D and 3D, on one or two ranks. Grid::refine_globally
+// announces the change and everything keyed by cells or nodes rebuilds on
+// it: the points are carried into the refined cells (deal.II's particle
+// transfer), the nodal storage and the boundary conditions number the new
+// nodes, and the step takes the new cell size.
+// - no point is lost, and the grid has 2^dim times the cells;
+// - free fall stays exact: every point has v = -g t_n, and the centre of
+//   mass follows MUSL's discrete y_n = y_0 - g t_n (t_n + dt) / 2, both to
+//   round-off, across the refinement;
+// - one projection to the refined grid conserves mass and momentum to
+//   round-off.
+
+#include <deal.II/base/mpi.h>
+
+#include <mpm/assembly/grid_transfer.h>
+#include <mpm/bodies/body.h>
+#include <mpm/bodies/point_seeder.h>
+#include <mpm/boundary/dirichlet_conditions.h>
+#include <mpm/grid/grid.h>
+#include <mpm/time/explicit_integrator.h>
+
+#include <cmath>
+
+#include "tests.h"
+
+using namespace dealii;
+using namespace mpm;
+
+template <int dim>
+void
+test()
+{
+  deallog << "dim = " << dim << std::endl;
+  const MPI_Comm comm = MPI_COMM_WORLD;
+  const double   g = 9.81, dt = 1e-3;
+
+  ParameterHandler prm;
+  Grid<dim>::declare_parameters(prm);
+  DirichletConditions<dim>::declare_parameters(prm);
+  prm.enter_subsection("body");
+  Body<dim>::declare_parameters(prm);
+  prm.leave_subsection();
+  prm.enter_subsection("material");
+  Material::declare_parameters(prm);
+  prm.leave_subsection();
+  prm.parse_input_from_string(
+    std::string("subsection Grid\n set Generator = subdivided_hyper_cube\n"
+                " set Arguments = 4 : 0 : 1 : true\nend\n"
+                "subsection body\n set Shape = box\n") +
+    (dim == 2 ? " set Lower corner = 0.3,0.5\n set Upper corner = 0.7,0.9\n" :
+                " set Lower corner = 0.3,0.3,0.5\n"
+                " set Upper corner = 0.7,0.7,0.9\n") +
+    " set Material = steel\nend\n");
+
+  Grid<dim> grid(prm, comm);
+  grid.create();
+  DirichletConditions<dim> dirichlet(prm, grid);
+  dirichlet.setup();
+  GridNodes<dim> nodes(grid);
+  nodes.setup();
+  GridBasis<dim> basis(grid);
+
+  std::vector<std::unique_ptr<Material>> materials;
+  prm.enter_subsection("material");
+  materials.push_back(Material::create(prm, "steel", "material"));
+  prm.leave_subsection();
+  std::vector<Body<dim>> bodies;
+  prm.enter_subsection("body");
+  bodies.emplace_back(prm, "body", "body", std::vector<std::string>{"steel"});
+  prm.leave_subsection();
+  MaterialPoints<dim> points(grid, {}, false);
+  PointSeeder<dim>    seeder(grid);
+  seeder.seed(bodies, materials, points);
+
+  Tensor<1, dim> gravity;
+  gravity[dim - 1] = -g;
+  GridTransfer<dim> transfer(points, basis, nodes, {&dirichlet}, gravity);
+  TimerOutput       timer(MPI_COMM_WORLD, deallog.get_console(),
+                    TimerOutput::never, TimerOutput::wall_times);
+  ExplicitIntegrator<dim> integrator(
+    transfer, materials, ExplicitIntegrator<dim>::Scheme::MUSL, 0., grid,
+    timer);
+
+  using Layout = PointLayout<dim>;
+  auto centre_height = [&]() {
+    double sum = 0.;
+    for (const auto &particle : points.handler())
+      sum += particle.get_location()[dim - 1];
+    return Utilities::MPI::sum(sum, comm) / points.n_global_points();
+  };
+  const double                y0       = centre_height();
+  const types::particle_index n_points = points.n_global_points();
+  const unsigned int          n_cells  = grid.get_triangulation()
+                                     .n_global_active_cells();
+  double velocity_error = 0., height_error = 0.;
+  for (unsigned int n = 1; n <= 20; ++n)
+    {
+      if (n == 11)
+        grid.refine_globally(1);
+      integrator.step(dt);
+      points.sort();
+      const double t = n * dt;
+      for (const auto &particle : points.handler())
+        velocity_error =
+          std::max(velocity_error,
+                   std::abs(particle.get_properties()[Layout::velocity + dim -
+                                                      1] +
+                            g * t));
+      height_error =
+        std::max(height_error,
+                 std::abs(centre_height() - (y0 - g * t * (t + dt) / 2.)));
+    }
+  velocity_error = Utilities::MPI::max(velocity_error, comm);
+
+  mpm_tests::check("no point lost across the refinement",
+                   points.n_global_points() == n_points);
+  mpm_tests::check("the grid has 2^dim times the cells",
+                   grid.get_triangulation().n_global_active_cells() ==
+                     (1u << dim) * n_cells);
+  mpm_tests::check("free fall across the refinement: v = -g t_n to 1e-12",
+                   velocity_error < 1e-12);
+  mpm_tests::check("and y_n = y_0 - g t_n (t_n + dt) / 2 to 1e-12",
+                   height_error < 1e-12);
+
+  // One projection to the refined grid.
+  double         point_mass = 0.;
+  Tensor<1, dim> point_momentum;
+  for (const auto &particle : points.handler())
+    {
+      const ArrayView<const double> p = particle.get_properties();
+      point_mass += p[Layout::mass];
+      point_momentum += p[Layout::mass] * Layout::get_velocity(p);
+    }
+  point_mass     = Utilities::MPI::sum(point_mass, comm);
+  point_momentum = Utilities::MPI::sum(point_momentum, comm);
+  transfer.project_mass_momentum(false);
+  using NodalLayout = typename GridNodes<dim>::NodalLayout;
+  double         grid_mass = 0.;
+  Tensor<1, dim> grid_momentum;
+  for (unsigned int node = 0;
+       node < grid.node_partitioner()->locally_owned_size();
+       ++node)
+    {
+      const double *v = nodes.values_of(node);
+      grid_mass += v[NodalLayout::mass];
+      for (unsigned int d = 0; d < dim; ++d)
+        grid_momentum[d] += v[NodalLayout::velocity + d];
+    }
+  grid_mass     = Utilities::MPI::sum(grid_mass, comm);
+  grid_momentum = Utilities::MPI::sum(grid_momentum, comm);
+  mpm_tests::check("projection to the refined grid conserves mass to 1e-13",
+                   std::abs(grid_mass - point_mass) < 1e-13 * point_mass);
+  mpm_tests::check("and momentum to 1e-13",
+                   (grid_momentum - point_momentum).norm() <
+                     1e-13 * point_momentum.norm());
+  deallog << "points: " << points.n_global_points() << ", cells "
+          << n_cells << " -> "
+          << grid.get_triangulation().n_global_active_cells() << std::endl;
+}
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  mpm_tests::initlog();
+  test<2>();
+  test<3>();
+}
