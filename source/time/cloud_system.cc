@@ -262,13 +262,9 @@ namespace mpm
   bool
   CloudSystem<dim>::update_active_set(ImplicitState<dim> &state)
   {
-    const MPI_Comm                comm = this->points.get_communicator();
-    // The out-of-balance force before constraints, kept for contact walls.
-    TrilinosWrappers::MPI::Vector residual_at_nodes(state.owned_dofs,
-                                                    state.relevant_dofs,
-                                                    comm);
-    if (state.keeps_unconstrained_residual)
-      residual_at_nodes = state.unconstrained_residual;
+    const MPI_Comm                      comm = this->points.get_communicator();
+    const TrilinosWrappers::MPI::Vector residual_at_nodes =
+      state.wall_reactions(comm);
     unsigned int released = 0, engaged = 0;
     // A node held by a contact wall lets go when the wall pulls. As on
     // the grid, a point that the step brings within half its spacing

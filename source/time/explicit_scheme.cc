@@ -36,41 +36,17 @@ namespace mpm
 
 
 
-  namespace
-  {
-    /** An entry of `Time stepping`. */
-    std::string
-    time_stepping_entry(ParameterHandler &prm, const std::string &entry)
-    {
-      prm.enter_subsection("Time stepping");
-      const std::string value = prm.get(entry);
-      prm.leave_subsection();
-      return value;
-    }
-
-    double
-    time_stepping_number(ParameterHandler &prm, const std::string &entry)
-    {
-      prm.enter_subsection("Time stepping");
-      const double value = prm.get_double(entry);
-      prm.leave_subsection();
-      return value;
-    }
-  } // namespace
-
-
-
   template <int dim>
   ExplicitScheme<dim>::ExplicitScheme(
     ParameterHandler &                         prm,
     const typename TimeScheme<dim>::Scene &scene)
     : TimeScheme<dim>(prm, scene)
-    , cfl_number(time_stepping_number(prm, "CFL number"))
+    , cfl_number(TimeScheme<dim>::time_stepping_number(prm, "CFL number"))
     , integrator(scene.transfer,
                  scene.materials,
                  ExplicitIntegrator<dim>::parse_scheme(
-                   time_stepping_entry(prm, "Update scheme")),
-                 time_stepping_number(prm, "PIC fraction"),
+                   TimeScheme<dim>::time_stepping_entry(prm, "Update scheme")),
+                 TimeScheme<dim>::time_stepping_number(prm, "PIC fraction"),
                  scene.grid,
                  scene.timer)
   {

@@ -302,12 +302,9 @@ namespace mpm
   bool
   GridSystem<dim>::update_active_set(ImplicitState<dim> &state)
   {
-    const MPI_Comm                comm = this->points.get_communicator();
-    // The out-of-balance force before constraints, kept for contact walls.
-    TrilinosWrappers::MPI::Vector residual_at_nodes(state.owned_dofs,
-                                                    state.relevant_dofs,
-                                                    comm);
-    residual_at_nodes = state.unconstrained_residual;
+    const MPI_Comm                      comm = this->points.get_communicator();
+    const TrilinosWrappers::MPI::Vector residual_at_nodes =
+      state.wall_reactions(comm);
     unsigned int released = 0, engaged = 0;
     const TrilinosWrappers::MPI::Vector closing = contact_gaps(state, true);
     // Ranks that share a node see the same ghosted values and so decide

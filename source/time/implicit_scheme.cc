@@ -18,20 +18,6 @@ namespace mpm
 
 
 
-  namespace
-  {
-    unsigned int
-    load_steps(ParameterHandler &prm)
-    {
-      prm.enter_subsection("Time stepping");
-      const unsigned int n = prm.get_integer("Load steps");
-      prm.leave_subsection();
-      return n;
-    }
-  } // namespace
-
-
-
   template <int dim>
   ImplicitScheme<dim>::ImplicitScheme(
     ParameterHandler &                      prm,
@@ -43,7 +29,8 @@ namespace mpm
     std::unique_ptr<MeshfreeBasis<dim>>     meshfree)
     : TimeScheme<dim>(prm, scene)
     , dynamic(dynamic)
-    , n_load_steps(load_steps(prm))
+    , n_load_steps(static_cast<unsigned int>(
+        TimeScheme<dim>::time_stepping_number(prm, "Load steps")))
     , integrator(dynamic,
                  prm,
                  scene.points,

@@ -37,10 +37,33 @@ namespace mpm
   std::string
   TimeScheme<dim>::scheme_name(ParameterHandler &prm)
   {
+    return time_stepping_entry(prm, "Scheme");
+  }
+
+
+
+  template <int dim>
+  std::string
+  TimeScheme<dim>::time_stepping_entry(ParameterHandler & prm,
+                                       const std::string &entry)
+  {
     prm.enter_subsection("Time stepping");
-    const std::string name = prm.get("Scheme");
+    const std::string value = prm.get(entry);
     prm.leave_subsection();
-    return name;
+    return value;
+  }
+
+
+
+  template <int dim>
+  double
+  TimeScheme<dim>::time_stepping_number(ParameterHandler & prm,
+                                        const std::string &entry)
+  {
+    prm.enter_subsection("Time stepping");
+    const double value = prm.get_double(entry);
+    prm.leave_subsection();
+    return value;
   }
 
 
@@ -49,10 +72,8 @@ namespace mpm
   TimeScheme<dim>::TimeScheme(ParameterHandler &prm, const Scene &scene)
     : scene(scene)
   {
-    prm.enter_subsection("Time stepping");
-    final_time      = prm.get_double("End time");
-    fixed_time_step = prm.get_double("Time step");
-    prm.leave_subsection();
+    final_time      = time_stepping_number(prm, "End time");
+    fixed_time_step = time_stepping_number(prm, "Time step");
     if (!(final_time > 0.))
       throw InputError("Time stepping/End time must be positive.");
   }

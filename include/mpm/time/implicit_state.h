@@ -117,6 +117,21 @@ namespace mpm
       acceleration_ghosted = acceleration;
     }
 
+    /**
+     * The out-of-balance force before constraints at every relevant dof,
+     * zero unless it is kept: minus the wall force at a held node.
+     */
+    TrilinosWrappers::MPI::Vector
+    wall_reactions(const MPI_Comm communicator) const
+    {
+      TrilinosWrappers::MPI::Vector ghosted(owned_dofs,
+                                            relevant_dofs,
+                                            communicator);
+      if (keeps_unconstrained_residual)
+        ghosted = unconstrained_residual;
+      return ghosted;
+    }
+
     /** Newmark (else quasi-static). */
     bool   dynamic   = false;
     double time_step = 0.;

@@ -130,6 +130,13 @@ namespace mpm
     load(boost::archive::binary_iarchive &archive) = 0;
 
   protected:
+    /** An entry of `Time stepping` (the handler is at top level). */
+    static std::string
+    time_stepping_entry(ParameterHandler &prm, const std::string &entry);
+
+    static double
+    time_stepping_number(ParameterHandler &prm, const std::string &entry);
+
     /** Reads End time and Time step. */
     TimeScheme(ParameterHandler &prm, const Scene &scene);
 
