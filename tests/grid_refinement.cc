@@ -4,7 +4,7 @@
 // announces the change and everything keyed by cells or nodes rebuilds on
 // it: the points are carried into the refined cells (deal.II's particle
 // transfer), the nodal storage and the boundary conditions number the new
-// nodes, and the step takes the new cell size.
+// nodes, and the step's one-cell check takes the new cell size.
 // - no point is lost, and the grid has 2^dim times the cells;
 // - free fall stays exact: every point has v = -g t_n, and the centre of
 //   mass follows MUSL's discrete y_n = y_0 - g t_n (t_n + dt) / 2, both to

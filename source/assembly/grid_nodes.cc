@@ -55,6 +55,7 @@ namespace mpm
 
     active_flag.assign(grid.n_nodes(), false);
     active_nodes.clear();
+    solve_nodes.clear();
 
     imported_nodes.clear();
     for (const auto &range : grid.node_partitioner()->import_indices())

@@ -22,8 +22,12 @@ namespace mpm
                 .second)
             {
               positions.push_back(cell->vertex(v));
-              conditions.push_back(dirichlet.constraint_of(
-                grid.node_of(cell->active_cell_index(), v)));
+              // A copy: the grid's conditions are rebuilt when it changes,
+              // and the cloud's nodes keep theirs. No condition: no normals.
+              const Condition *condition = dirichlet.constraint_of(
+                grid.node_of(cell->active_cell_index(), v));
+              conditions.push_back(condition != nullptr ? *condition :
+                                                          Condition());
             }
       }
     velocities.resize(positions.size());
@@ -94,8 +98,8 @@ namespace mpm
           else
             held.fill(true);
         }
-    const Condition *condition = conditions[i];
-    if (condition == nullptr || condition->unilateral)
+    const Condition *condition = &conditions[i];
+    if (condition->n_normals == 0 || condition->unilateral)
       return held;
     if (condition->n_normals == dim)
       {

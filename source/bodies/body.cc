@@ -98,18 +98,21 @@ namespace mpm
       placement_1d = QIterated<1>(QMidpoint<1>(), n);
     placement = Quadrature<dim>(placement_1d);
     const std::string shape_name = prm.get("Shape");
+    // The origin of the Initial velocity expressions: the centre of a disk,
+    // sphere or cylinder end.
+    Point<dim> center;
     if (shape_name == "box")
       {
-        shape        = Shape::box;
-        lower_corner = parse_point<dim>(prm.get("Lower corner"),
-                                        section_path + "/Lower corner");
-        upper_corner = parse_point<dim>(prm.get("Upper corner"),
-                                        section_path + "/Upper corner");
+        const Point<dim> lower_corner = parse_point<dim>(
+          prm.get("Lower corner"), section_path + "/Lower corner");
+        const Point<dim> upper_corner = parse_point<dim>(
+          prm.get("Upper corner"), section_path + "/Upper corner");
         for (unsigned int d = 0; d < dim; ++d)
           if (!(upper_corner[d] > lower_corner[d]))
             throw InputError(section_path +
                              "/Upper corner must be larger than Lower corner "
                              "in every coordinate.");
+        shape = std::make_unique<BoxShape<dim>>(lower_corner, upper_corner);
       }
     else if (shape_name == "disk" || shape_name == "sphere")
       {
@@ -117,11 +120,11 @@ namespace mpm
           throw InputError(section_path + "/Shape = " + shape_name +
                            " needs Dimension = " + (dim == 2 ? "3" : "2") +
                            "; use " + (dim == 2 ? "disk" : "sphere") + ".");
-        shape  = Shape::ball;
         center = parse_point<dim>(prm.get("Center"), section_path + "/Center");
-        radius = prm.get_double("Radius");
+        const double radius = prm.get_double("Radius");
         if (!(radius > 0.))
           throw InputError(section_path + "/Radius must be positive.");
+        shape = std::make_unique<BallShape<dim>>(center, radius);
       }
     else if (shape_name == "cylinder")
       {
@@ -129,26 +132,27 @@ namespace mpm
           throw InputError(section_path +
                            "/Shape = cylinder needs Dimension = 3; in 2D "
                            "use a box.");
-        shape  = Shape::cylinder;
         center = parse_point<dim>(prm.get("Center"), section_path + "/Center");
-        axis   = parse_point<dim>(prm.get("Axis"), section_path + "/Axis");
-        radius = prm.get_double("Radius");
+        const Tensor<1, dim> axis =
+          parse_point<dim>(prm.get("Axis"), section_path + "/Axis");
+        const double radius = prm.get_double("Radius");
         if (!(radius > 0.))
           throw InputError(section_path + "/Radius must be positive.");
         if (!(axis.norm() > 0.))
           throw InputError(section_path + "/Axis must not be zero.");
+        shape = std::make_unique<CylinderShape<dim>>(center, axis, radius);
       }
     else
       {
         if (dim != 2)
           throw InputError(section_path +
                            "/Shape = polygon is available in 2D only.");
-        shape   = Shape::polygon;
-        polygon = parse_point_list<dim>(prm.get("Vertices"),
-                                        section_path + "/Vertices");
-        if (polygon.size() < 3)
+        const std::vector<Point<dim>> vertices = parse_point_list<dim>(
+          prm.get("Vertices"), section_path + "/Vertices");
+        if (vertices.size() < 3)
           throw InputError(section_path +
                            "/Vertices must list at least 3 points.");
+        shape = std::make_unique<PolygonShape<dim>>(vertices);
       }
 
     const std::string material_name = prm.get("Material");
@@ -175,47 +179,6 @@ namespace mpm
                                    FunctionParser<dim>::default_variable_names(),
                                    center,
                                    section_path + "/Initial velocity");
-  }
-
-
-
-  template <int dim>
-  bool
-  Body<dim>::contains(const Point<dim> &x) const
-  {
-    switch (shape)
-      {
-        case Shape::box:
-          for (unsigned int d = 0; d < dim; ++d)
-            if (x[d] < lower_corner[d] || x[d] > upper_corner[d])
-              return false;
-          return true;
-        case Shape::ball:
-          return x.distance_square(center) <= radius * radius;
-        case Shape::cylinder:
-          {
-            const Tensor<1, dim> d = x - center;
-            const double         t = d * axis / axis.norm_square();
-            return t >= 0. && t <= 1. &&
-                   (d - t * axis).norm_square() <= radius * radius;
-          }
-        case Shape::polygon:
-          {
-            // Even-odd rule with a ray in +x direction.
-            bool               inside = false;
-            const unsigned int n      = polygon.size();
-            for (unsigned int i = 0, j = n - 1; i < n; j = i++)
-              {
-                const Point<dim> &a = polygon[i];
-                const Point<dim> &b = polygon[j];
-                if ((a[1] > x[1]) != (b[1] > x[1]) &&
-                    x[0] < (b[0] - a[0]) * (x[1] - a[1]) / (b[1] - a[1]) + a[0])
-                  inside = !inside;
-              }
-            return inside;
-          }
-      }
-    return false;
   }
 
 

@@ -66,10 +66,11 @@ namespace mpm
         traction_normal = prm.get("Traction normal")[0] - 'x';
         if (traction_normal >= dim)
           throw InputError("Loads/Traction normal = z needs Dimension = 3.");
-        lower_corner = parse_point<dim>(prm.get("Region lower corner"),
-                                        "Loads/Region lower corner");
-        upper_corner = parse_point<dim>(prm.get("Region upper corner"),
-                                        "Loads/Region upper corner");
+        region = std::make_unique<BoxShape<dim>>(
+          parse_point<dim>(prm.get("Region lower corner"),
+                           "Loads/Region lower corner"),
+          parse_point<dim>(prm.get("Region upper corner"),
+                           "Loads/Region upper corner"));
       }
     const std::string factor = prm.get("Load factor");
     if (!factor.empty())
@@ -106,12 +107,7 @@ namespace mpm
     if (!active)
       return;
     using Layout = PointLayout<dim>;
-    auto inside  = [&](const Point<dim> &x) {
-      for (unsigned int d = 0; d < dim; ++d)
-        if (x[d] < lower_corner[d] || x[d] > upper_corner[d])
-          return false;
-      return true;
-    };
+    auto inside  = [&](const Point<dim> &x) { return region->contains(x); };
     double volume = 0.;
     for (const auto &particle : points.handler())
       if (inside(particle.get_location()))

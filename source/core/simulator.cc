@@ -100,6 +100,15 @@ namespace mpm
     gravity = parse_point<dim>(prm.get("Gravity"), "Gravity");
     const std::string method      = prm.get("Method");
     const std::string scheme_name = TimeScheme<dim>::scheme_name(prm);
+    // Checked first, before anything is built from them.
+    prm.enter_subsection("Time stepping");
+    end_time = prm.get_double("End time");
+    const double cfl_number = prm.get_double("CFL number");
+    prm.leave_subsection();
+    if (!(end_time > 0.))
+      throw InputError("Time stepping/End time must be positive.");
+    if (!(cfl_number > 0.))
+      throw InputError("Time stepping/CFL number must be positive.");
     prm.enter_subsection("Output");
     const std::string output_directory = prm.get("Directory");
     prm.leave_subsection();
@@ -168,9 +177,6 @@ namespace mpm
     seeder = std::make_unique<PointSeeder<dim>>(*grid);
     seeder->seed(bodies, materials, *points);
     seeder->apply_geostatic_stress(bodies, materials, gravity, *points);
-    prm.enter_subsection("Time stepping");
-    end_time = prm.get_double("End time");
-    prm.leave_subsection();
     loads = std::make_unique<PointLoads<dim>>(prm,
                                               scheme_name == "quasi-static",
                                               end_time);

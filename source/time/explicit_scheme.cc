@@ -49,10 +49,7 @@ namespace mpm
                  TimeScheme<dim>::time_stepping_number(prm, "PIC fraction"),
                  scene.grid,
                  scene.timer)
-  {
-    if (!(cfl_number > 0.))
-      throw InputError("Time stepping/CFL number must be positive.");
-  }
+  {}
 
 
 
@@ -85,10 +82,10 @@ namespace mpm
   ExplicitScheme<dim>::advance(const double time, const unsigned int step)
   {
     const double end = this->end_time();
-    double       dt  = this->fixed_time_step > 0. ? this->fixed_time_step :
-                                                    stable_time_step(speeds);
-    if (time + dt > end + this->end_time_tolerance())
-      dt = end - time;
+    const double dt  = this->step_to_end(time,
+                                        this->fixed_time_step > 0. ?
+                                          this->fixed_time_step :
+                                          stable_time_step(speeds));
 
     this->scene.transfer.set_load_factor(this->scene.loads.load_factor(time));
     this->scene.transfer.set_time(time);

@@ -65,7 +65,7 @@ namespace mpm
     : points(points)
     , materials(materials)
     , timer(timer)
-    // The system refers to newmark, which it uses only once steps run.
+    , newmark(prm, dynamic)
     , system(make_system(prm,
                          points,
                          grid,
@@ -76,7 +76,6 @@ namespace mpm
                          pcout,
                          timer))
     , newton(prm, grid, pcout, timer)
-    , newmark(prm, dynamic)
     , assembler(points, materials, gravity, newmark)
   {
     state.dynamic                      = dynamic;

@@ -85,9 +85,7 @@ namespace mpm
   double
   ImplicitScheme<dim>::advance(const double time, const unsigned int step)
   {
-    double dt = next_step;
-    if (time + dt > this->end_time() + this->end_time_tolerance())
-      dt = this->end_time() - time;
+    double dt = this->step_to_end(time, next_step);
 
     ConditionalOStream &pcout    = this->scene.pcout;
     const unsigned int  max_cuts = 4;

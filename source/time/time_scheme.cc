@@ -74,8 +74,6 @@ namespace mpm
   {
     final_time      = time_stepping_number(prm, "End time");
     fixed_time_step = time_stepping_number(prm, "Time step");
-    if (!(final_time > 0.))
-      throw InputError("Time stepping/End time must be positive.");
   }
 
 

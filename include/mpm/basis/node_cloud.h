@@ -63,7 +63,7 @@ namespace mpm
     /**
      * A wall of the grid, the plane outward . x = offset, along an axis.
      * Nodes that do not start on it are held there once the material
-     * reaches it (the integrator's active set): all components on fixed
+     * reaches it (CloudSystem's active set): all components on fixed
      * and contact walls, the normal one on slip walls; only contact walls
      * let go again.
      */
@@ -78,8 +78,8 @@ namespace mpm
     std::vector<Point<dim>>     positions;
     std::vector<Tensor<1, dim>> velocities;
     std::vector<Tensor<1, dim>> accelerations;
-    /** The grid condition of each node's starting vertex, or nullptr. */
-    std::vector<const Condition *> conditions;
+    /** The grid condition of each node's starting vertex (no normals: none). */
+    std::vector<Condition> conditions;
     /** False until the nodes have taken v and a from the points. */
     bool has_history = false;
 

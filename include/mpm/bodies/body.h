@@ -6,6 +6,8 @@
 #include <deal.II/base/point.h>
 #include <deal.II/base/quadrature.h>
 
+#include <mpm/base/shape.h>
+
 #include <memory>
 #include <string>
 #include <vector>
@@ -33,7 +35,17 @@ namespace mpm
          const std::vector<std::string> &material_names);
 
     bool
-    contains(const Point<dim> &x) const;
+    contains(const Point<dim> &x) const
+    {
+      return shape->contains(x);
+    }
+
+    /** The region the body fills. */
+    const Shape<dim> &
+    region() const
+    {
+      return *shape;
+    }
 
     Tensor<1, dim>
     initial_velocity(const Point<dim> &x) const;
@@ -90,22 +102,8 @@ namespace mpm
     }
 
   private:
-    enum class Shape
-    {
-      box,
-      ball,
-      cylinder,
-      polygon
-    };
-
-    std::string             body_name;
-    Shape                   shape;
-    Point<dim>              lower_corner;
-    Point<dim>              upper_corner;
-    Point<dim>              center;
-    double                  radius = 0.;
-    Tensor<1, dim>          axis;
-    std::vector<Point<dim>> polygon;
+    std::string                 body_name;
+    std::unique_ptr<Shape<dim>> shape;
     unsigned int            material = 0;
     /** K0 of the geostatic stress; negative: no initial stress. */
     double                  geostatic_k0 = -1.;

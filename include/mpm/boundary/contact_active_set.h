@@ -36,14 +36,6 @@ namespace mpm
       return held.count({node, wall}) > 0;
     }
 
-    /** Whether any pair of `node` is held. */
-    bool
-    holds_any(const unsigned int node) const
-    {
-      const auto next = held.lower_bound({node, 0});
-      return next != held.end() && next->first == node;
-    }
-
     /** Start a step: every pair may change once again. */
     void
     begin_step()

@@ -21,7 +21,10 @@ namespace mpm
    * - the implicit schemes' constraints on the node's displacement;
    * - the outward normal of a wall that holds the material only while it
    *   presses, for the active set (ContactActiveSet) and its gaps.
-   * setup() runs when the grid is built and again whenever it changes.
+   * Each implementation connects its setup() to Grid::changed. Where
+   * several conditions act on one node they act in the order of their
+   * list, each on what the one before left (today a node has at most
+   * one: the grid's walls combine theirs at corners themselves).
    */
   template <int dim>
   class NodalCondition

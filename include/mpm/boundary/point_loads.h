@@ -5,6 +5,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/point.h>
 
+#include <mpm/base/shape.h>
 #include <mpm/points/material_points.h>
 
 #include <memory>
@@ -54,8 +55,8 @@ namespace mpm
     bool           active = false;
     bool           is_traction = false;
     unsigned int   traction_normal = 1;
-    Point<dim>     lower_corner;
-    Point<dim>     upper_corner;
+    /** The points that start in it carry the load. */
+    std::unique_ptr<Shape<dim>> region;
     /** Total force [N] or traction [Pa], at full load. */
     Tensor<1, dim> load;
     bool           ramped;

@@ -78,7 +78,7 @@ namespace mpm
     /**
      * Move every vertex x to transformation(x); then number the nodes and
      * fire `changed`. The mapping is chosen again, so this must happen
-     * before points are put into the grid.
+     * before MaterialPoints are built on the grid (they keep the mapping).
      */
     template <typename Transformation>
     void

@@ -5,8 +5,6 @@
 #include <deal.II/base/timer.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 
-#include <boost/serialization/set.hpp>
-
 #include <mpm/basis/meshfree_basis.h>
 #include <mpm/basis/node_cloud.h>
 #include <mpm/boundary/dirichlet_conditions.h>
@@ -15,7 +13,6 @@
 #include <mpm/time/newmark.h>
 
 #include <memory>
-#include <set>
 #include <vector>
 
 namespace mpm

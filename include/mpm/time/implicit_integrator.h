@@ -119,9 +119,9 @@ namespace mpm
     TimerOutput &                                 timer;
 
     ImplicitState<dim>                   state;
+    Newmark                              newmark;
     std::unique_ptr<ImplicitSystem<dim>> system;
     NewtonSolver<dim>                    newton;
-    Newmark                              newmark;
     ImplicitAssembler<dim>               assembler;
   };
 } // namespace mpm

@@ -48,8 +48,8 @@ namespace mpm
     };
 
     /**
-     * `Time stepping/Scheme`, `End time` and `Time step`, then every
-     * scheme's own entries.
+     * `Time stepping/Scheme`, `End time` and `Time step`; each scheme
+     * declares its own entries.
      */
     static void
     declare_parameters(ParameterHandler &prm);
@@ -130,6 +130,19 @@ namespace mpm
     load(boost::archive::binary_iarchive &archive) = 0;
 
   protected:
+    /**
+     * A step of size dt from `time`, shortened only if it would overshoot
+     * End time: one that ends within round-off of it keeps its size, so
+     * that a run which stops there takes the same steps as one that goes
+     * on.
+     */
+    double
+    step_to_end(const double time, const double dt) const
+    {
+      return time + dt > final_time + end_time_tolerance() ? final_time - time :
+                                                              dt;
+    }
+
     /** An entry of `Time stepping` (the handler is at top level). */
     static std::string
     time_stepping_entry(ParameterHandler &prm, const std::string &entry);
