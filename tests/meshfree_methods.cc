@@ -94,7 +94,7 @@ patch_test(const MeshfreeBasis<2>::Kind kind, const double gamma)
   Support<2>                  support;
   std::vector<Tensor<1, 2>>   u;
   std::vector<Tensor<1, 2>>   force_at_node(nodes.size());
-  Vector<double>              point_force;
+  PointAssembly<2>::Scratch   scratch;
   double                      dF_error = 0.;
   for (unsigned int j = 0; j < n; ++j)
     for (unsigned int i = 0; i < n; ++i)
@@ -111,15 +111,15 @@ patch_test(const MeshfreeBasis<2>::Kind kind, const double gamma)
           dF_error = std::max(dF_error, (dF - F).norm());
 
           PointAssembly<2>::internal_force(support,
-                                           unit_symmetric_tensor<2>(),
+                                           nullptr,
                                            h * h * gauss.weight(q),
                                            sigma,
                                            nullptr,
-                                           point_force,
-                                           nullptr);
+                                           nullptr,
+                                           scratch);
           for (unsigned int k = 0; k < support.n_nodes; ++k)
             for (unsigned int a = 0; a < 2; ++a)
-              force_at_node[support.nodes[k]][a] += point_force(k * 2 + a);
+              force_at_node[support.nodes[k]][a] += scratch.force[k * 2 + a];
         }
   check(name + ": a uniform stretch on the nodes gives dF = F at every "
                "point to 1e-10",

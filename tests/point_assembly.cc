@@ -95,13 +95,15 @@ test(const std::string &model)
     material->update_stress(k, stress, {});
     const SymmetricTensor<4, 3> c =
       material->spatial_tangent(k, old_stress, {});
+    typename PointAssembly<dim>::Scratch scratch;
     PointAssembly<dim>::internal_force(support,
-                                       dF,
+                                       &dF,
                                        determinant(dF * F_n) * V0,
                                        stress,
                                        &c,
-                                       force,
-                                       tangent);
+                                       tangent,
+                                       scratch);
+    force = Vector<double>(scratch.force.begin(), scratch.force.end());
   };
 
   Vector<double>     force;

@@ -23,26 +23,26 @@ namespace mpm
   GridTransfer<dim>::add_force(const ArrayView<const double> &p,
                                const Support<dim> &           support)
   {
-    const double       m = p[Layout::mass];
-    const Tensor<2, dim> F = Layout::get_deformation_gradient(p);
-    const double volume  = determinant(F) * p[Layout::reference_volume];
-    // The in-plane block of the 3x3 Cauchy stress.
-    const SymmetricTensor<2, 3> stress = Layout::get_stress(p);
-    Tensor<2, dim>              sigma;
-    for (unsigned int a = 0; a < dim; ++a)
-      for (unsigned int b = 0; b < dim; ++b)
-        sigma[a][b] = stress[a][b];
-    Tensor<1, dim> external = m * gravity;
+    const double m = p[Layout::mass];
+    // The supports are evaluated at the current positions: dF = I.
+    PointAssembly<dim>::internal_force(support,
+                                       nullptr,
+                                       Layout::current_volume(p),
+                                       Layout::get_stress(p),
+                                       nullptr,
+                                       nullptr,
+                                       scratch);
+    const std::vector<double> &internal = scratch.force;
+    Tensor<1, dim>        external = m * gravity;
     if (points.has_implicit_fields())
       for (unsigned int d = 0; d < dim; ++d)
         external[d] += p[points.point_load_index() + d];
     external *= load_factor;
     for (unsigned int i = 0; i < support.n_nodes; ++i)
       {
-        const Tensor<1, dim> internal = volume * (sigma * support.grad_N[i]);
         double *f = nodes.values_of(support.nodes[i]) + NodalLayout::force;
         for (unsigned int d = 0; d < dim; ++d)
-          f[d] += support.N[i] * external[d] - internal[d];
+          f[d] += support.N[i] * external[d] - internal[i * dim + d];
       }
   }
 

@@ -189,14 +189,17 @@ namespace mpm
       throw InputError("No body has a material point inside the grid: check "
                        "the shapes in Bodies against Grid/Arguments.");
 
-    transfer = std::make_unique<GridTransfer<dim>>(
-      *points,
-      *basis,
-      *nodes,
-      std::vector<const NodalCondition<dim> *>{dirichlet.get()},
-      gravity);
-    const typename TimeScheme<dim>::Scene scene{
-      *grid, *points, *transfer, materials, *loads, pcout, timer};
+    nodal_conditions = {dirichlet.get()};
+    transfer         = std::make_unique<GridTransfer<dim>>(
+      *points, *basis, *nodes, nodal_conditions, gravity);
+    const typename TimeScheme<dim>::Scene scene{*grid,
+                                                *points,
+                                                *transfer,
+                                                nodal_conditions,
+                                                materials,
+                                                *loads,
+                                                pcout,
+                                                timer};
     if (scheme_name == "explicit")
       {
         if (method != "MPM")

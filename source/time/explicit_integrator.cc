@@ -1,4 +1,5 @@
 #include <mpm/base/input_error.h>
+#include <mpm/points/point_state.h>
 #include <mpm/time/explicit_integrator.h>
 
 #include <cmath>
@@ -150,7 +151,6 @@ namespace mpm
     const Tensor<2, dim>    F_old = Layout::get_deformation_gradient(p);
     const Tensor<2, dim>    F_new =
       (unit_symmetric_tensor<dim>() + dt * L) * F_old;
-    const double J_old = determinant(F_old);
     const double J_new = determinant(F_new);
     if (!(J_new > 0.))
       {
@@ -165,26 +165,15 @@ namespace mpm
     kinematics.F_new             = Layout::embed(F_new, 1.);
     kinematics.velocity_gradient = Layout::embed(L, 0.);
     kinematics.dt                = dt;
-
-    SymmetricTensor<2, 3>       stress     = Layout::get_stress(p);
-    const SymmetricTensor<2, 3> stress_old = stress;
     const Material &material =
-      *materials[static_cast<unsigned int>(p[Layout::material_id])];
-    const ArrayView<double> internal(&p[Layout::internal_variables],
-                                     material.n_internal_variables());
-    material.update_stress(kinematics, stress, internal);
-    report.max_signal_speed =
-      std::max(report.max_signal_speed,
-               material.signal_speed(stress, internal, cell_size));
-
-    // Stress power per reference volume, tau : D with tau = J sigma, by the
-    // trapezoidal rule.
-    const SymmetricTensor<2, 3> D = symmetrize(kinematics.velocity_gradient);
-    p[Layout::work_density] +=
-      0.5 * dt * (J_old * stress_old + J_new * stress) * D;
-
-    Layout::set_deformation_gradient(p, F_new);
-    Layout::set_stress(p, stress);
+      PointState<dim>::commit(materials, kinematics, p);
+    report.max_signal_speed = std::max(
+      report.max_signal_speed,
+      material.signal_speed(Layout::get_stress(p),
+                            ArrayView<const double>(
+                              &p[Layout::internal_variables],
+                              material.n_internal_variables()),
+                            cell_size));
   }
 
 

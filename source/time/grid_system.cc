@@ -147,8 +147,7 @@ namespace mpm
     for (const auto &particle : this->points.handler().particles_in_cell(cell))
       {
         const ArrayView<const double> p = particle.get_properties();
-        volume += determinant(Layout::get_deformation_gradient(p)) *
-                  p[Layout::reference_volume];
+        volume += Layout::current_volume(p);
       }
     return cell->measure() / volume;
   }

@@ -48,8 +48,8 @@ namespace mpm
 
     FullMatrix<double>          cell_tangent;
     Vector<double>              cell_residual, cell_external;
-    Vector<double>              point_force;
     FullMatrix<double>          point_tangent;
+    typename PointAssembly<dim>::Scratch scratch;
     std::vector<Tensor<1, dim>> du, v_n, a_n, a_node;
     std::vector<double>         internal;
     const double                mass_stiffness =
@@ -102,12 +102,13 @@ namespace mpm
               c = material.spatial_tangent(k, old_stress, old_internal);
             PointAssembly<dim>::internal_force(
               support,
-              dF,
-              weight * determinant(dF * F_n) * p[Layout::reference_volume],
+              &dF,
+              weight * Layout::current_volume(p, dF * F_n),
               stress,
               &c,
-              point_force,
-              with_tangent ? &own_tangent : nullptr);
+              with_tangent ? &own_tangent : nullptr,
+              scratch);
+            const std::vector<double> &point_force = scratch.force;
 
             for (unsigned int i = 0; i < support.n_nodes; ++i)
               for (unsigned int a = 0; a < dim; ++a)
@@ -118,7 +119,7 @@ namespace mpm
                      p[Layout::mass] * gravity[a]);
                   cell_external(i * dim + a) += external;
                   cell_residual(i * dim + a) +=
-                    external - point_force(i * dim + a);
+                    external - point_force[i * dim + a];
                 }
             if (with_tangent && !single_point)
               cell_tangent.add(1., point_tangent);

@@ -1,9 +1,11 @@
 #include <mpm/assembly/point_assembly.h>
 #include <mpm/base/input_error.h>
+#include <mpm/points/point_state.h>
 #include <mpm/time/cloud_system.h>
 #include <mpm/time/grid_system.h>
 #include <mpm/time/implicit_integrator.h>
 
+#include <algorithm>
 #include <string>
 
 namespace mpm
@@ -28,6 +30,7 @@ namespace mpm
                 MaterialPoints<dim> &               points,
                 const Grid<dim> &                   grid,
                 const GridBasis<dim> &              basis,
+                const std::vector<const NodalCondition<dim> *> &conditions,
                 const DirichletConditions<dim> &    dirichlet,
                 std::unique_ptr<MeshfreeBasis<dim>> meshfree,
                 const Newmark &                     newmark,
@@ -38,12 +41,7 @@ namespace mpm
         return std::make_unique<CloudSystem<dim>>(
           points, grid, dirichlet, std::move(meshfree), newmark, pcout, timer);
       return std::make_unique<GridSystem<dim>>(
-        prm,
-        points,
-        grid,
-        basis,
-        std::vector<const NodalCondition<dim> *>{&dirichlet},
-        pcout);
+        prm, points, grid, basis, conditions, pcout);
     }
   } // namespace
 
@@ -56,6 +54,7 @@ namespace mpm
     MaterialPoints<dim> &                         points,
     const Grid<dim> &                             grid,
     const GridBasis<dim> &                        basis,
+    const std::vector<const NodalCondition<dim> *> &conditions,
     const DirichletConditions<dim> &              dirichlet,
     const std::vector<std::unique_ptr<Material>> &materials,
     const Tensor<1, dim> &                        gravity,
@@ -70,6 +69,7 @@ namespace mpm
                          points,
                          grid,
                          basis,
+                         conditions,
                          dirichlet,
                          std::move(meshfree),
                          newmark,
@@ -79,7 +79,12 @@ namespace mpm
     , assembler(points, materials, gravity, newmark)
   {
     state.dynamic                      = dynamic;
-    state.keeps_unconstrained_residual = dirichlet.has_contact();
+    state.keeps_unconstrained_residual =
+      std::any_of(conditions.begin(),
+                  conditions.end(),
+                  [](const NodalCondition<dim> *condition) {
+                    return condition->has_unilateral_nodes();
+                  });
   }
 
 
@@ -169,26 +174,9 @@ namespace mpm
             const ArrayView<double> p = particle->get_properties();
             const Tensor<2, dim>    dF =
               PointAssembly<dim>::deformation_increment(support, du);
-            const Tensor<2, dim> F_n = Layout::get_deformation_gradient(p);
-            const Tensor<2, dim> F   = dF * F_n;
-            const StepKinematics k   =
-              ImplicitAssembler<dim>::step_kinematics(dF, F_n, state.time_step);
-            const Material &material =
-              *materials[static_cast<unsigned int>(p[Layout::material_id])];
-            SymmetricTensor<2, 3>       stress     = Layout::get_stress(p);
-            const SymmetricTensor<2, 3> stress_old = stress;
-            material.update_stress(
-              k,
-              stress,
-              ArrayView<double>(&p[Layout::internal_variables],
-                                material.n_internal_variables()));
-            // Stress work per reference volume over the step.
-            p[Layout::work_density] +=
-              0.5 *
-              (determinant(F_n) * stress_old + determinant(F) * stress) *
-              symmetrize(k.velocity_gradient) * k.dt;
-            Layout::set_deformation_gradient(p, F);
-            Layout::set_stress(p, stress);
+            const StepKinematics k = ImplicitAssembler<dim>::step_kinematics(
+              dF, Layout::get_deformation_gradient(p), state.time_step);
+            PointState<dim>::commit(materials, k, p);
 
             Tensor<1, dim> displacement_at_point;
             for (unsigned int i = 0; i < support.n_nodes; ++i)

@@ -36,6 +36,7 @@ namespace mpm
                  scene.points,
                  scene.grid,
                  basis,
+                 scene.nodal_conditions,
                  dirichlet,
                  scene.materials,
                  gravity,

@@ -4,6 +4,7 @@
 #include <deal.II/base/tensor.h>
 
 #include <mpm/assembly/grid_nodes.h>
+#include <mpm/assembly/point_assembly.h>
 #include <mpm/basis/grid_basis.h>
 #include <mpm/boundary/nodal_condition.h>
 #include <mpm/points/material_points.h>
@@ -142,6 +143,7 @@ namespace mpm
     const Tensor<1, dim>                           gravity;
     double                                         load_factor = 1.;
     double                                         time        = 0.;
+    typename PointAssembly<dim>::Scratch           scratch;
   };
 } // namespace mpm
 

@@ -4,7 +4,6 @@
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
 #include <deal.II/lac/full_matrix.h>
-#include <deal.II/lac/vector.h>
 
 #include <mpm/basis/support.h>
 
@@ -24,11 +23,26 @@ namespace mpm
    *
    * Local degrees of freedom are numbered node-major: (node i, component a)
    * is i * dim + a.
+   *
+   * The explicit schemes call the same internal force with dF = I (no
+   * `deformation_increment`): their supports are evaluated at the current
+   * positions.
    */
   template <int dim>
   class PointAssembly
   {
   public:
+    /**
+     * Storage that internal_force() reuses from point to point, so that a
+     * loop over points allocates only at its first point.
+     */
+    struct Scratch
+    {
+      std::vector<Tensor<1, dim>>                    g;
+      std::vector<std::array<double, dim * dim * dim>> c_g;
+      std::vector<double>                            force;
+    };
+
     /**
      * Deformation gradient of the step, dF = I + sum_i du_i (x) grad N_i,
      * with the gradients at the start of the step and du_i the displacement
@@ -40,20 +54,65 @@ namespace mpm
 
     /**
      * Internal force r_(i a) = v sigma_(a c) g_i[c] with g_i = dF^-T grad N_i
-     * the gradient in the current configuration and v the current volume;
+     * the gradient in the current configuration (grad N_i itself if
+     * `deformation_increment` is nullptr) and v the current volume;
      * and, if `tangent` is given, the tangent
      * K_(i a)(k b) = v (c_(a c b d) g_i[c] g_k[d] + g_i . sigma . g_k
      * delta_ab), material plus geometric stiffness. In 2D the in-plane
      * blocks of the 3x3 stress and tangent are used (plane strain).
+     * The force is left in `scratch.force`.
      */
     static void
     internal_force(const Support<dim> &          support,
-                   const Tensor<2, dim> &        deformation_increment,
+                   const Tensor<2, dim> *        deformation_increment,
                    const double                  current_volume,
                    const SymmetricTensor<2, 3> & stress,
                    const SymmetricTensor<4, 3> *spatial_tangent,
-                   Vector<double> &              force,
-                   FullMatrix<double> *          tangent);
+                   FullMatrix<double> *          tangent,
+                   Scratch &                     scratch)
+    {
+      // Gradients in the current configuration: grad_x N = dF^-T grad_xn N.
+      const Tensor<1, dim> *g = support.grad_N.data();
+      if (deformation_increment != nullptr)
+        {
+          const Tensor<2, dim> inverse_transpose =
+            transpose(invert(*deformation_increment));
+          scratch.g.resize(support.n_nodes);
+          for (unsigned int i = 0; i < support.n_nodes; ++i)
+            scratch.g[i] = inverse_transpose * support.grad_N[i];
+          g = scratch.g.data();
+        }
+
+      Tensor<2, dim> sigma;
+      for (unsigned int a = 0; a < dim; ++a)
+        for (unsigned int b = 0; b < dim; ++b)
+          sigma[a][b] = stress[a][b];
+
+      scratch.force.resize(support.n_nodes * dim);
+      for (unsigned int i = 0; i < support.n_nodes; ++i)
+        {
+          const Tensor<1, dim> force = current_volume * (sigma * g[i]);
+          for (unsigned int a = 0; a < dim; ++a)
+            scratch.force[i * dim + a] = force[a];
+        }
+
+      if (tangent != nullptr)
+        add_tangent(
+          support, g, current_volume, *spatial_tangent, *tangent, scratch);
+    }
+
+  private:
+    /**
+     * The tangent of internal_force(), from the current gradients `g` and
+     * the force already in `scratch`.
+     */
+    static void
+    add_tangent(const Support<dim> &         support,
+                const Tensor<1, dim> *       g,
+                const double                 current_volume,
+                const SymmetricTensor<4, 3> &c,
+                FullMatrix<double> &         tangent,
+                Scratch &                    scratch);
   };
 } // namespace mpm
 

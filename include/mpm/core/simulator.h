@@ -118,6 +118,8 @@ namespace mpm
     std::unique_ptr<GridNodes<dim>>           nodes;
     std::unique_ptr<GridBasis<dim>>           basis;
     std::unique_ptr<DirichletConditions<dim>> dirichlet;
+    /** Everything that acts at the grid's nodes, in the order it acts. */
+    std::vector<const NodalCondition<dim> *>  nodal_conditions;
     std::vector<std::unique_ptr<Material>>    materials;
     std::vector<Body<dim>>                    bodies;
     std::unique_ptr<MaterialPoints<dim>>      points;

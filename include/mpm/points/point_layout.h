@@ -75,6 +75,22 @@ namespace mpm
           p[deformation_gradient + i * dim + j] = F[i][j];
     }
 
+    /**
+     * The current volume of a point whose deformation gradient is F: the one
+     * place that says how a point's volume follows its motion.
+     */
+    static double
+    current_volume(const ArrayView<const double> &p, const Tensor<2, dim> &F)
+    {
+      return determinant(F) * p[reference_volume];
+    }
+
+    static double
+    current_volume(const ArrayView<const double> &p)
+    {
+      return current_volume(p, get_deformation_gradient(p));
+    }
+
     /** Raw order of SymmetricTensor<2,3>: xx, yy, zz, xy, xz, yz. */
     static SymmetricTensor<2, 3>
     get_stress(const ArrayView<const double> &p)

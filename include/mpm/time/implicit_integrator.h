@@ -60,6 +60,7 @@ namespace mpm
                        MaterialPoints<dim> &                         points,
                        const Grid<dim> &                             grid,
                        const GridBasis<dim> &                        basis,
+                       const std::vector<const NodalCondition<dim> *> &conditions,
                        const DirichletConditions<dim> &              dirichlet,
                        const std::vector<std::unique_ptr<Material>> &materials,
                        const Tensor<1, dim> &                        gravity,

@@ -105,10 +105,7 @@ namespace mpm
     reach_of(const ArrayView<const double> &p)
     {
       using Layout = PointLayout<dim>;
-      return 0.5 *
-             std::pow(determinant(Layout::get_deformation_gradient(p)) *
-                        p[Layout::reference_volume],
-                      1. / dim);
+      return 0.5 * std::pow(Layout::current_volume(p), 1. / dim);
     }
 
     MaterialPoints<dim> &points;

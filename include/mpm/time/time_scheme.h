@@ -41,6 +41,7 @@ namespace mpm
       const Grid<dim> &                             grid;
       MaterialPoints<dim> &                         points;
       GridTransfer<dim> &                           transfer;
+      const std::vector<const NodalCondition<dim> *> &nodal_conditions;
       const std::vector<std::unique_ptr<Material>> &materials;
       const PointLoads<dim> &                       loads;
       ConditionalOStream &                          pcout;
