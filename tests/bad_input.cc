@@ -141,6 +141,24 @@ main(int argc, char **argv)
            with({"Time stepping/Scheme=quasi-static",
                  "Boundary conditions/Fixed boundaries=",
                  "Boundary conditions/Contact boundaries=bottom, left"}));
+  run_case("friction boundary without a coefficient",
+           with({"Boundary conditions/Fixed boundaries=",
+                 "Boundary conditions/Friction boundaries=bottom"}));
+  run_case("negative friction coefficient",
+           with({"Boundary conditions/Fixed boundaries=",
+                 "Boundary conditions/Friction boundaries=bottom: -0.1"}));
+  run_case("friction coefficient that is not a number",
+           with({"Boundary conditions/Fixed boundaries=",
+                 "Boundary conditions/Friction boundaries=bottom: rough"}));
+  run_case("friction boundary that is also fixed",
+           with({"Boundary conditions/Fixed boundaries=bottom",
+                 "Boundary conditions/Friction boundaries=bottom: 0.3"}));
+  run_case("unknown friction boundary",
+           with({"Boundary conditions/Friction boundaries=floor: 0.3"}));
+  run_case("friction boundary with the quasi-static scheme",
+           with({"Time stepping/Scheme=quasi-static",
+                 "Boundary conditions/Fixed boundaries=",
+                 "Boundary conditions/Friction boundaries=bottom: 0.3"}));
   run_case("both a total force and a traction",
            with({"Time stepping/Scheme=quasi-static",
                  "Loads/Total force=0, -1",

@@ -15,14 +15,13 @@
 #include <deal.II/base/mpi.h>
 
 #include <mpm/assembly/grid_transfer.h>
-#include <mpm/bodies/body.h>
-#include <mpm/bodies/point_seeder.h>
 #include <mpm/boundary/dirichlet_conditions.h>
 #include <mpm/grid/grid.h>
 #include <mpm/time/explicit_integrator.h>
 
 #include <cmath>
 
+#include "small_scene.h"
 #include "tests.h"
 
 using namespace dealii;
@@ -37,15 +36,8 @@ test()
   const double   g = 9.81, dt = 1e-3;
 
   ParameterHandler prm;
-  Grid<dim>::declare_parameters(prm);
-  DirichletConditions<dim>::declare_parameters(prm);
-  prm.enter_subsection("body");
-  Body<dim>::declare_parameters(prm);
-  prm.leave_subsection();
-  prm.enter_subsection("material");
-  Material::declare_parameters(prm);
-  prm.leave_subsection();
-  prm.parse_input_from_string(
+  mpm_tests::parse_small_scene<dim>(
+    prm,
     std::string("subsection Grid\n set Generator = subdivided_hyper_cube\n"
                 " set Arguments = 4 : 0 : 1 : true\nend\n"
                 "subsection body\n set Shape = box\n") +
@@ -63,16 +55,8 @@ test()
   GridBasis<dim> basis(grid);
 
   std::vector<std::unique_ptr<Material>> materials;
-  prm.enter_subsection("material");
-  materials.push_back(Material::create(prm, "steel", "material"));
-  prm.leave_subsection();
-  std::vector<Body<dim>> bodies;
-  prm.enter_subsection("body");
-  bodies.emplace_back(prm, "body", "body", std::vector<std::string>{"steel"});
-  prm.leave_subsection();
-  MaterialPoints<dim> points(grid, {}, false);
-  PointSeeder<dim>    seeder(grid);
-  seeder.seed(bodies, materials, points);
+  MaterialPoints<dim>                    points(grid, {}, false);
+  mpm_tests::seed_small_scene(prm, grid, materials, points);
 
   Tensor<1, dim> gravity;
   gravity[dim - 1] = -g;

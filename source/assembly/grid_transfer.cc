@@ -131,9 +131,10 @@ namespace mpm
 
   template <int dim>
   void
-  GridTransfer<dim>::compute_nodal_acceleration(const double dt,
-                                                const bool   advance_velocity)
+  GridTransfer<dim>::compute_nodal_acceleration(const double dt)
   {
+    for (const NodalCondition<dim> *condition : conditions)
+      condition->begin_explicit_solve();
     for (const unsigned int node : nodes.nodes_to_solve())
       {
         double *     v        = nodes.values_of(node);
@@ -142,17 +143,44 @@ namespace mpm
         double *     velocity = v + NodalLayout::velocity;
         for (unsigned int d = 0; d < dim; ++d)
           a[d] = m > 0. ? a[d] / m : 0.;
+        double start[dim];
+        for (unsigned int d = 0; d < dim; ++d)
+          start[d] = velocity[d];
         bool constrained = false;
         for (const NodalCondition<dim> *condition : conditions)
           if (condition->acts_on(node))
             {
-              condition->constrain_explicit(
-                node, m, velocity, a, dt, time, advance_velocity);
+              condition->constrain_explicit(node, m, velocity, a, dt, time);
               constrained = true;
             }
-        if (!constrained && advance_velocity)
-          for (unsigned int d = 0; d < dim; ++d)
-            velocity[d] += dt * a[d];
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            // a takes the conditions' reaction impulse (velocity - start)
+            // / dt, so that v_start + dt a is the end velocity too.
+            const double end = velocity[d] + dt * a[d];
+            if (constrained)
+              a[d] += (velocity[d] - start[d]) / dt;
+            velocity[d] = end;
+          }
+      }
+  }
+
+
+
+  template <int dim>
+  void
+  GridTransfer<dim>::compute_initial_acceleration()
+  {
+    for (const unsigned int node : nodes.nodes_to_solve())
+      {
+        double *     v = nodes.values_of(node);
+        const double m = v[NodalLayout::mass];
+        double *     a = v + NodalLayout::force;
+        for (unsigned int d = 0; d < dim; ++d)
+          a[d] = m > 0. ? a[d] / m : 0.;
+        for (const NodalCondition<dim> *condition : conditions)
+          if (condition->acts_on(node))
+            condition->constrain_velocity(node, a);
       }
   }
 

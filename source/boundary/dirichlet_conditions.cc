@@ -202,34 +202,6 @@ namespace mpm
 
 
   template <int dim>
-  void
-  DirichletConditions<dim>::constrain_explicit(const unsigned int node,
-                                               const double,
-                                               double *     velocity,
-                                               double *     a,
-                                               const double dt,
-                                               const double,
-                                               const bool advance_velocity) const
-  {
-    apply(node, a);
-    if (!(dt > 0.))
-      return;
-    double constrained[dim];
-    for (unsigned int d = 0; d < dim; ++d)
-      constrained[d] = velocity[d];
-    apply(node, constrained);
-    for (unsigned int d = 0; d < dim; ++d)
-      {
-        const double impulse = (constrained[d] - velocity[d]) / dt;
-        if (advance_velocity)
-          velocity[d] = constrained[d] + dt * a[d];
-        a[d] += impulse;
-      }
-  }
-
-
-
-  template <int dim>
   bool
   DirichletConditions<dim>::add_constraints(
     const unsigned int                              node,

@@ -42,6 +42,7 @@ namespace mpm
     MeshfreeBasis<dim>::declare_parameters(prm);
     Grid<dim>::declare_parameters(prm);
     DirichletConditions<dim>::declare_parameters(prm);
+    FrictionWalls<dim>::declare_parameters(prm);
     PointLoads<dim>::declare_parameters(prm);
     TimeScheme<dim>::declare_parameters(prm);
     ExplicitScheme<dim>::declare_parameters(prm);
@@ -110,7 +111,7 @@ namespace mpm
     if (!(cfl_number > 0.))
       throw InputError("Time stepping/CFL number must be positive.");
     prm.enter_subsection("Output");
-    const std::string output_directory = prm.get("Directory");
+    output_directory = prm.get("Directory");
     prm.leave_subsection();
 
     prm.enter_subsection("Materials");
@@ -137,8 +138,15 @@ namespace mpm
     if (dirichlet->has_contact() && scheme_name == "explicit")
       throw InputError("Boundary conditions/Contact boundaries are handled by "
                        "the quasi-static and Newmark schemes only; with Time "
-                       "stepping/Scheme = explicit use Fixed or Slip "
-                       "boundaries.");
+                       "stepping/Scheme = explicit use Fixed, Slip or "
+                       "Friction boundaries.");
+    friction_walls = std::make_unique<FrictionWalls<dim>>(prm, *grid);
+    if (!friction_walls->empty() && scheme_name != "explicit")
+      throw InputError("Boundary conditions/Friction boundaries act in the "
+                       "explicit scheme (Time stepping/Scheme = explicit); "
+                       "with the quasi-static and Newmark schemes use "
+                       "Contact boundaries (no slip where the material "
+                       "presses) or Slip boundaries.");
 
     // Set up the grid and everything on it (the conditions find their
     // nodes when the grid announces itself).
@@ -189,7 +197,7 @@ namespace mpm
       throw InputError("No body has a material point inside the grid: check "
                        "the shapes in Bodies against Grid/Arguments.");
 
-    nodal_conditions = {dirichlet.get()};
+    nodal_conditions = {dirichlet.get(), friction_walls.get()};
     transfer         = std::make_unique<GridTransfer<dim>>(
       *points, *basis, *nodes, nodal_conditions, gravity);
     const typename TimeScheme<dim>::Scene scene{*grid,
@@ -244,7 +252,7 @@ namespace mpm
     vtu_output =
       std::make_unique<VtuOutput<dim>>(prm, output_directory, communicator);
     time_series = std::make_unique<TimeSeries<dim>>(
-      prm, output_directory, gravity, *points, restart);
+      prm, output_directory, gravity, *points, nodal_conditions, restart);
     // The tangent check only prints (and checkpoints from before it lack
     // the entry); the scheme's step entries may change too.
     std::vector<std::string> entries_that_may_change = {
@@ -345,11 +353,14 @@ namespace mpm
   void
   Simulator<dim>::write_snapshot()
   {
-    vtu_output->write(time,
-                      *points,
-                      *nodes,
-                      grid->get_mapping(),
-                      scheme->node_cloud());
+    if (vtu_output->enabled())
+      vtu_output->write(time,
+                        *points,
+                        *nodes,
+                        grid->get_mapping(),
+                        scheme->node_cloud());
+    for (const NodalCondition<dim> *condition : nodal_conditions)
+      condition->write_tractions(output_directory, step);
   }
 
 
@@ -386,8 +397,7 @@ namespace mpm
         transfer->project_mass_momentum(false);
         transfer->compute_nodal_velocity();
         diagnostics = time_series->write_row(time, step, 0., *points);
-        if (vtu_output->enabled())
-          write_snapshot();
+        write_snapshot();
       }
     const double time_tolerance   = end_time_tolerance();
     const double output_interval  = vtu_output->interval();
@@ -417,12 +427,12 @@ namespace mpm
                    next_time_series <= time + time_tolerance)
               next_time_series += series_interval;
           }
-        if (vtu_output->enabled() &&
-            ((output_interval > 0. && time >= next_output - time_tolerance) ||
-             at_end))
+        if ((output_interval > 0. && time >= next_output - time_tolerance) ||
+            at_end)
           {
             TimerOutput::Scope t(timer, "output");
-            scheme->prepare_grid_output();
+            if (vtu_output->enabled())
+              scheme->prepare_grid_output();
             write_snapshot();
             while (output_interval > 0. &&
                    next_output <= time + time_tolerance)

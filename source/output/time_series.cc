@@ -32,13 +32,16 @@ namespace mpm
 
 
   template <int dim>
-  TimeSeries<dim>::TimeSeries(ParameterHandler &         prm,
-                              const std::string &        directory,
-                              const Tensor<1, dim> &     gravity,
-                              const MaterialPoints<dim> &points,
-                              const bool                 continued)
+  TimeSeries<dim>::TimeSeries(
+    ParameterHandler &                              prm,
+    const std::string &                             directory,
+    const Tensor<1, dim> &                          gravity,
+    const MaterialPoints<dim> &                     points,
+    const std::vector<const NodalCondition<dim> *> &conditions,
+    const bool                                      continued)
     : gravity(gravity)
     , communicator(points.get_communicator())
+    , conditions(conditions)
   {
     prm.enter_subsection("Output");
     filename     = directory + "/" + prm.get("Time series file");
@@ -94,6 +97,9 @@ namespace mpm
             for (unsigned int d = 0; d < dim; ++d)
               file << ",point" << k << "_v" << axes[d];
           }
+        for (const NodalCondition<dim> *condition : conditions)
+          for (const std::string &name : condition->force_names())
+            file << ',' << name;
         file << '\n';
         file << std::setprecision(12);
       }
@@ -186,6 +192,11 @@ namespace mpm
     for (unsigned int d = 0; d < dim; ++d)
       result.momentum[d] = sums[4 + d];
 
+    std::vector<double> forces;
+    for (const NodalCondition<dim> *condition : conditions)
+      for (const double force : condition->forces())
+        forces.push_back(force);
+
     if (file.is_open())
       {
         file << time << ',' << step << ',' << dt << ','
@@ -201,6 +212,8 @@ namespace mpm
           file << ',' << -largest[1 + 2 * d] << ',' << largest[2 + 2 * d];
         for (unsigned int k = tracked; k < sums.size(); ++k)
           file << ',' << sums[k];
+        for (const double force : forces)
+          file << ',' << force;
         file << '\n';
         file.flush();
       }

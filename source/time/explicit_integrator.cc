@@ -68,7 +68,7 @@ namespace mpm
           timed("P2G", [&] { transfer.project_mass_momentum(true); });
           timed("nodal solve", [&] {
             transfer.compute_nodal_velocity(false);
-            transfer.compute_nodal_acceleration(dt, true);
+            transfer.compute_nodal_acceleration(dt);
           });
           // Point 6: V_p += dt N a (blended with PIC, if asked).
           timed("G2P", [&] { update_points(dt, advance, report); });
@@ -82,7 +82,7 @@ namespace mpm
           timed("P2G", [&] { transfer.project_mass_momentum(true); });
           timed("nodal solve", [&] {
             transfer.compute_nodal_velocity(false);
-            transfer.compute_nodal_acceleration(dt, true);
+            transfer.compute_nodal_acceleration(dt);
           });
           timed("G2P", [&] { update_points(dt, all, report); });
           break;
@@ -92,7 +92,7 @@ namespace mpm
           timed("G2P", [&] { update_points(dt, stress, report); });
           timed("P2G", [&] { transfer.project_force(); });
           timed("nodal solve",
-                [&] { transfer.compute_nodal_acceleration(dt, true); });
+                [&] { transfer.compute_nodal_acceleration(dt); });
           timed("G2P", [&] { update_points(dt, advance_and_move, report); });
           break;
       }

@@ -71,7 +71,7 @@ namespace mpm
     MaterialPoints<dim> &points = this->scene.points;
     transfer.set_load_factor(this->scene.loads.load_factor(0.));
     transfer.project_mass_momentum(true);
-    transfer.compute_nodal_acceleration(0., false);
+    transfer.compute_initial_acceleration();
     transfer.for_each_point([&](auto &particle, const Support<dim> &support) {
       const Tensor<1, dim> a =
         transfer.interpolate(support, GridNodes<dim>::NodalLayout::force);

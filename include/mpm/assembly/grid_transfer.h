@@ -96,11 +96,17 @@ namespace mpm
     /**
      * a = f / m on every node, corrected by the nodal conditions so that
      * v + dt a meets them, where v is the nodal velocity as it stands
-     * (constrained or not); if `advance_velocity`, also v += dt a. With
-     * dt = 0 the conditions act on a alone.
+     * (constrained or not); then v += dt a.
      */
     void
-    compute_nodal_acceleration(const double dt, const bool advance_velocity);
+    compute_nodal_acceleration(const double dt);
+
+    /**
+     * a = f / m on every node with what the nodal conditions forbid
+     * removed, the velocity left alone: the start of a Newmark run.
+     */
+    void
+    compute_initial_acceleration();
 
     /** Nodal velocity and acceleration interpolated at a point. */
     Tensor<1, dim>

@@ -63,21 +63,18 @@ namespace mpm
       apply(node, velocity);
     }
 
-    /**
-     * Constrain a and add the acceleration that takes the projected
-     * velocity v to the constrained P v (at a wall, the reaction impulse
-     * over dt), so that v + dt a = P v + dt P a. Constraining a alone would
-     * leave a point near a wall with the velocity it had before the wall
-     * stopped its nodes, a velocity the grid no longer has.
-     */
+    /** Constrain v and a alike, so that v + dt a is constrained. */
     void
     constrain_explicit(const unsigned int node,
-                       const double       mass,
-                       double *           velocity,
-                       double *           acceleration,
-                       const double       dt,
-                       const double       time,
-                       const bool         advance_velocity) const override;
+                       const double,
+                       double *velocity,
+                       double *acceleration,
+                       const double,
+                       const double) const override
+    {
+      apply(node, acceleration);
+      apply(node, velocity);
+    }
 
     /**
      * A fixed or held contact node: every component; a contact node that

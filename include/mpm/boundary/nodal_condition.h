@@ -6,6 +6,8 @@
 #include <deal.II/lac/affine_constraints.h>
 
 #include <array>
+#include <string>
+#include <vector>
 
 namespace mpm
 {
@@ -23,8 +25,8 @@ namespace mpm
    *   presses, for the active set (ContactActiveSet) and its gaps.
    * Each implementation connects its setup() to Grid::changed. Where
    * several conditions act on one node they act in the order of their
-   * list, each on what the one before left (today a node has at most
-   * one: the grid's walls combine theirs at corners themselves).
+   * list, each on what the one before left: in the explicit solve, each
+   * on the end velocity that the ones before it gave.
    */
   template <int dim>
   class NodalCondition
@@ -51,11 +53,21 @@ namespace mpm
     virtual void
     constrain_velocity(const unsigned int node, double *velocity) const = 0;
 
+    /** A nodal solve of the explicit schemes begins. */
+    virtual void
+    begin_explicit_solve() const
+    {}
+
     /**
-     * The explicit nodal solve at a node: `acceleration` is f / m on
-     * entry; on return v + dt a meets the condition, with v the nodal
-     * `velocity` as it stands, which becomes v + dt a if
-     * `advance_velocity`. With dt = 0 the condition acts on a alone.
+     * The explicit nodal solve at a node, dt > 0. On entry `acceleration`
+     * is f / m, and the node would end the step with velocity + dt
+     * acceleration. The condition changes the velocity, the acceleration
+     * or both so that this end velocity meets it. The caller then gives
+     * the node that end velocity, and the acceleration (end velocity -
+     * velocity on entry) / dt, which holds the condition's reaction
+     * impulse: constraining a alone would leave a point near a wall with
+     * the velocity it had before the wall stopped its nodes, a velocity
+     * the grid no longer has.
      */
     virtual void
     constrain_explicit(const unsigned int node,
@@ -63,8 +75,7 @@ namespace mpm
                        double *           velocity,
                        double *           acceleration,
                        const double       dt,
-                       const double       time,
-                       const bool         advance_velocity) const = 0;
+                       const double       time) const = 0;
 
     /**
      * Implicit schemes: add the condition on the displacement of a node
@@ -84,6 +95,28 @@ namespace mpm
      */
     virtual const Tensor<1, dim> *
     unilateral_normal(const unsigned int node) const = 0;
+
+    /** Names of the forces the condition reports in the time series. */
+    virtual std::vector<std::string>
+    force_names() const
+    {
+      return {};
+    }
+
+    /** Those forces at the last nodal solve, on every rank. Collective. */
+    virtual std::vector<double>
+    forces() const
+    {
+      return {};
+    }
+
+    /**
+     * At an output time: write what the condition reports along its
+     * walls into `directory`, named with the step. Collective.
+     */
+    virtual void
+    write_tractions(const std::string &, const unsigned int) const
+    {}
   };
 } // namespace mpm
 

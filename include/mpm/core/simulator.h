@@ -11,6 +11,7 @@
 #include <mpm/basis/grid_basis.h>
 #include <mpm/bodies/body.h>
 #include <mpm/boundary/dirichlet_conditions.h>
+#include <mpm/boundary/friction_walls.h>
 #include <mpm/boundary/point_loads.h>
 #include <mpm/core/checkpoint.h>
 #include <mpm/bodies/point_seeder.h>
@@ -104,7 +105,10 @@ namespace mpm
     void
     report_progress(const bool force);
 
-    /** The grid output (and the node cloud's) of the current state. */
+    /**
+     * The output of the current state: points, grid (and the node cloud)
+     * for ParaView, if written, and the walls' tractions.
+     */
     void
     write_snapshot();
 
@@ -118,6 +122,8 @@ namespace mpm
     std::unique_ptr<GridNodes<dim>>           nodes;
     std::unique_ptr<GridBasis<dim>>           basis;
     std::unique_ptr<DirichletConditions<dim>> dirichlet;
+    std::unique_ptr<FrictionWalls<dim>>       friction_walls;
+    std::string                               output_directory;
     /** Everything that acts at the grid's nodes, in the order it acts. */
     std::vector<const NodalCondition<dim> *>  nodal_conditions;
     std::vector<std::unique_ptr<Material>>    materials;

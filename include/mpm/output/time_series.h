@@ -7,6 +7,7 @@
 #include <boost/serialization/split_member.hpp>
 #include <boost/serialization/vector.hpp>
 
+#include <mpm/boundary/nodal_condition.h>
 #include <mpm/points/material_points.h>
 
 #include <fstream>
@@ -40,9 +41,10 @@ namespace mpm
   };
 
   /**
-   * The CSV time series of a run: time, step, dt, the Diagnostics, and the
-   * position and velocity of tracked points. A tracked point is the material
-   * point nearest to a given position at the start.
+   * The CSV time series of a run: time, step, dt, the Diagnostics, the
+   * position and velocity of tracked points, and the forces that the nodal
+   * conditions report (on walls). A tracked point is the material point
+   * nearest to a given position at the start.
    */
   template <int dim>
   class TimeSeries
@@ -61,11 +63,12 @@ namespace mpm
      * Parse the `Output` subsection (the handler is at top level); the file
      * goes into `directory`.
      */
-    TimeSeries(ParameterHandler &         prm,
-               const std::string &        directory,
-               const Tensor<1, dim> &     gravity,
-               const MaterialPoints<dim> &points,
-               const bool                 continued);
+    TimeSeries(ParameterHandler &                              prm,
+               const std::string &                             directory,
+               const Tensor<1, dim> &                          gravity,
+               const MaterialPoints<dim> &                     points,
+               const std::vector<const NodalCondition<dim> *> &conditions,
+               const bool                                      continued);
 
     /** Simulated time between rows; 0: every step. */
     double
@@ -108,6 +111,7 @@ namespace mpm
     // mutable: save() asks it for its length, and tellp() is not const.
     mutable std::ofstream                         file;
     std::vector<types::particle_index>            tracked_ids;
+    const std::vector<const NodalCondition<dim> *> conditions;
   };
 
 

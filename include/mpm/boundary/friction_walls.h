@@ -1,0 +1,184 @@
+#ifndef mpm_boundary_friction_walls_h
+#define mpm_boundary_friction_walls_h
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/tensor.h>
+
+#include <mpm/boundary/nodal_condition.h>
+#include <mpm/grid/grid.h>
+
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace mpm
+{
+  using namespace dealii;
+
+  /**
+   * Rigid walls with Coulomb friction on named boundaries of the grid
+   * ([W] 3.2, eq. 10), in the explicit schemes. A wall holds the material
+   * only while it presses (unilateral: a body may lift off) and resists
+   * sliding up to mu times the normal force.
+   *
+   * The law acts at the wall's nodes, as the m/dt limit of a penalty
+   * (Bardenhagen et al. 2000 for a rigid wall; CB-Geo and Uintah act
+   * alike). With v* the velocity a node would reach without the wall and n
+   * the wall's outward normal at the node:
+   * - v*.n <= 0: the node moves away from the wall; no force;
+   * - otherwise the wall takes the normal part v_n = v*.n, with normal
+   *   force m v_n / dt, and the tangential part v_t either stops (stick,
+   *   |v_t| <= mu v_n) or loses mu v_n along itself (slip), so that the
+   *   tangential force is never above mu times the normal force and equals
+   *   it while the material slips.
+   * A node on several walls (a corner) meets each wall's law in turn. The
+   * coefficient `0` gives a frictionless unilateral wall and `inf` one on
+   * which the material cannot slide while it presses.
+   *
+   * The forces on each wall are measured at every nodal solve: their total
+   * along and across the wall goes into the time series, and the nodal
+   * tractions (force over the node's share of the wall) along the wall
+   * into a CSV file at each output time.
+   */
+  template <int dim>
+  class FrictionWalls : public NodalCondition<dim>
+  {
+  public:
+    /** `Boundary conditions/Friction boundaries`. */
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    /**
+     * Parse `Boundary conditions` (the handler is at top level). Connects
+     * to Grid::changed, which calls setup().
+     */
+    FrictionWalls(ParameterHandler &prm, const Grid<dim> &grid);
+
+    /** Whether the scene names any friction wall. */
+    bool
+    empty() const
+    {
+      return walls.empty();
+    }
+
+    /** Find each wall's nodes, their normals and their shares of it. */
+    void
+    setup() override;
+
+    bool
+    has_unilateral_nodes() const override
+    {
+      return false;
+    }
+
+    bool
+    acts_on(const unsigned int node) const override
+    {
+      return first_contact[node + 1] > first_contact[node];
+    }
+
+    /** Remove motion into the walls. */
+    void
+    constrain_velocity(const unsigned int node,
+                       double *           velocity) const override;
+
+    void
+    begin_explicit_solve() const override;
+
+    void
+    constrain_explicit(const unsigned int node,
+                       const double       mass,
+                       double *           velocity,
+                       double *           acceleration,
+                       const double       dt,
+                       const double       time) const override;
+
+    /** The implicit schemes refuse friction walls before they get here. */
+    bool
+    add_constraints(const unsigned int,
+                    const std::array<types::global_dof_index, dim> &,
+                    const bool,
+                    AffineConstraints<double> &) const override
+    {
+      return false;
+    }
+
+    const Tensor<1, dim> *
+    unilateral_normal(const unsigned int) const override
+    {
+      return nullptr;
+    }
+
+    /** `<wall>_normal_force` and `<wall>_tangential_force` per wall. */
+    std::vector<std::string>
+    force_names() const override;
+
+    /**
+     * The total force of the material on each wall at the last nodal
+     * solve, along the wall's mean outward normal (positive: the material
+     * presses) and across it (2D: along the normal turned by +90 degrees;
+     * 3D: the magnitude). Per unit thickness in 2D. Collective.
+     */
+    std::vector<double>
+    forces() const override;
+
+    /**
+     * Write `<wall>_tractions_<step>.csv` into `directory` for each wall:
+     * node position, normal and tangential traction (force over the node's
+     * share of the wall; tangential as in forces(), per node). Collective;
+     * rank 0 writes, rows sorted by position.
+     */
+    void
+    write_tractions(const std::string &directory,
+                    const unsigned int step) const override;
+
+  private:
+    struct Wall
+    {
+      std::string        name;
+      types::boundary_id id;
+      double             friction;
+      /** Unit mean outward normal, over all ranks. */
+      Tensor<1, dim> mean_normal;
+    };
+
+    /** One wall at one node. */
+    struct Contact
+    {
+      unsigned int   wall;
+      Tensor<1, dim> outward;
+      /** The node's share of the wall: half its edges, a quarter of its
+       * faces (3D). */
+      double     area;
+      Point<dim> position;
+    };
+
+    /** The force of the material on the wall at one contact. */
+    struct Reaction
+    {
+      double         normal = 0.;
+      Tensor<1, dim> tangential;
+    };
+
+    /** Per wall: the total force vector from owned nodes, on this rank. */
+    std::vector<Tensor<1, dim>>
+    local_wall_forces() const;
+
+    /** The direction of the tangential component in 2D. */
+    static Tensor<1, dim>
+    tangent_of(const Tensor<1, dim> &normal);
+
+    const Grid<dim> & grid;
+    std::vector<Wall> walls;
+
+    /** Contacts of node k: first_contact[k] to first_contact[k + 1]. */
+    std::vector<unsigned int> first_contact;
+    std::vector<Contact>      contacts;
+    /** Per contact, as measured by the last nodal solve. */
+    mutable std::vector<Reaction> reactions;
+
+    boost::signals2::scoped_connection grid_changed;
+  };
+} // namespace mpm
+
+#endif

@@ -1,0 +1,370 @@
+#include <deal.II/base/mpi.h>
+
+#include <mpm/base/input_error.h>
+#include <mpm/boundary/friction_walls.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <map>
+#include <sstream>
+
+namespace mpm
+{
+  template <int dim>
+  void
+  FrictionWalls<dim>::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Boundary conditions");
+    prm.declare_entry(
+      "Friction boundaries",
+      "",
+      Patterns::Anything(),
+      "Named boundaries that are rigid walls with Coulomb friction, each "
+      "with its friction coefficient: 'name: mu, name: mu'. The wall holds "
+      "the material only while it presses (it may lift off) and resists "
+      "sliding up to mu times the normal force. mu = 0 is a frictionless "
+      "one-sided wall, mu = inf one on which the material cannot slide. "
+      "Explicit scheme only. The forces on each wall go into the time "
+      "series, and its tractions into <name>_tractions_<step>.csv at each "
+      "output time.");
+    prm.leave_subsection();
+  }
+
+
+
+  template <int dim>
+  FrictionWalls<dim>::FrictionWalls(ParameterHandler &prm,
+                                    const Grid<dim> & grid)
+    : grid(grid)
+  {
+    const std::string entry = "Boundary conditions/Friction boundaries";
+    prm.enter_subsection("Boundary conditions");
+    const std::string text = prm.get("Friction boundaries");
+    std::vector<std::string> other_walls;
+    for (const char *other :
+         {"Fixed boundaries", "Slip boundaries", "Contact boundaries"})
+      for (const std::string &name :
+           Utilities::split_string_list(prm.get(other)))
+        other_walls.push_back(name);
+    prm.leave_subsection();
+
+    for (const std::string &item : Utilities::split_string_list(text, ','))
+      {
+        const std::vector<std::string> parts =
+          Utilities::split_string_list(item, ':');
+        if (parts.size() != 2 || parts[0].empty() || parts[1].empty())
+          throw InputError(entry + ": '" + item +
+                           "' must be 'boundary name: friction "
+                           "coefficient', for example 'floor: 0.3'.");
+        Wall wall;
+        wall.name = parts[0];
+        try
+          {
+            std::size_t used = 0;
+            wall.friction    = std::stod(parts[1], &used);
+            if (used != parts[1].size())
+              throw std::invalid_argument(parts[1]);
+          }
+        catch (const std::exception &)
+          {
+            throw InputError(entry + ": the friction coefficient '" +
+                             parts[1] + "' of '" + wall.name +
+                             "' is not a number.");
+          }
+        if (!(wall.friction >= 0.))
+          throw InputError(entry + ": the friction coefficient of '" +
+                           wall.name + "' is " + parts[1] +
+                           "; it must be 0 or more (inf: no sliding).");
+        for (const Wall &earlier : walls)
+          if (earlier.name == wall.name)
+            throw InputError(entry + " names '" + wall.name + "' twice.");
+        if (std::find(other_walls.begin(), other_walls.end(), wall.name) !=
+            other_walls.end())
+          throw InputError(entry + " names '" + wall.name +
+                           "', which another entry of Boundary conditions "
+                           "names too; a boundary has one condition.");
+        wall.id = grid.boundary_id(wall.name, entry);
+        walls.push_back(wall);
+      }
+    grid_changed = grid.changed.connect([this]() { setup(); });
+  }
+
+
+
+  template <int dim>
+  void
+  FrictionWalls<dim>::setup()
+  {
+    const auto &tria = grid.get_triangulation();
+    const std::vector<types::boundary_id> present = tria.get_boundary_ids();
+    for (const Wall &wall : walls)
+      if (std::find(present.begin(), present.end(), wall.id) == present.end())
+        throw InputError("Boundary conditions/Friction boundaries names '" +
+                         wall.name +
+                         "', but no face of the grid has its boundary id " +
+                         std::to_string(wall.id) +
+                         ". For subdivided_hyper_rectangle, set colorize = "
+                         "true in Grid/Arguments.");
+
+    // Per (node, wall): the face normals weighted by face size, and the
+    // node's share of the faces. Each boundary face belongs to one cell,
+    // and every cell around an owned node is owned or ghost here.
+    std::map<std::pair<unsigned int, unsigned int>, Contact> found;
+    std::vector<Tensor<1, dim>> normal_sums(walls.size());
+    for (const auto &cell : grid.node_numbering().active_cell_iterators())
+      {
+        if (cell->is_artificial())
+          continue;
+        for (const unsigned int f : cell->face_indices())
+          {
+            if (!cell->at_boundary(f))
+              continue;
+            const auto face = cell->face(f);
+            const auto wall =
+              std::find_if(walls.begin(), walls.end(), [&](const Wall &w) {
+                return w.id == face->boundary_id();
+              });
+            if (wall == walls.end())
+              continue;
+            const unsigned int w = wall - walls.begin();
+            Tensor<1, dim>     normal;
+            if constexpr (dim == 2)
+              normal = cross_product_2d(face->vertex(1) - face->vertex(0));
+            else
+              normal = cross_product_3d(face->vertex(1) - face->vertex(0),
+                                        face->vertex(2) - face->vertex(0));
+            if (normal * (face->center() - cell->center()) < 0.)
+              normal = -normal;
+            if (cell->is_locally_owned())
+              normal_sums[w] += normal;
+            const double share = face->measure() / face->n_vertices();
+            for (const unsigned int v : face->vertex_indices())
+              {
+                const unsigned int node =
+                  grid.node_of_dof(face->vertex_dof_index(v, 0));
+                Contact &contact = found[{node, w}];
+                contact.wall     = w;
+                contact.outward += normal;
+                contact.area += share;
+                contact.position = face->vertex(v);
+              }
+          }
+      }
+    for (unsigned int w = 0; w < walls.size(); ++w)
+      {
+        const Tensor<1, dim> sum =
+          Utilities::MPI::sum(normal_sums[w], tria.get_communicator());
+        walls[w].mean_normal = sum / sum.norm();
+      }
+
+    first_contact.assign(grid.n_nodes() + 1, 0);
+    contacts.clear();
+    // `found` is ordered by node, then wall: each node's walls in the
+    // order of the entry.
+    for (auto &[key, contact] : found)
+      {
+        contact.outward /= contact.outward.norm();
+        contacts.push_back(contact);
+        ++first_contact[key.first + 1];
+      }
+    for (unsigned int k = 0; k < grid.n_nodes(); ++k)
+      first_contact[k + 1] += first_contact[k];
+    reactions.assign(contacts.size(), Reaction());
+  }
+
+
+
+  template <int dim>
+  void
+  FrictionWalls<dim>::constrain_velocity(const unsigned int node,
+                                         double *           velocity) const
+  {
+    for (unsigned int c = first_contact[node]; c < first_contact[node + 1];
+         ++c)
+      {
+        const Tensor<1, dim> &n   = contacts[c].outward;
+        double                v_n = 0.;
+        for (unsigned int d = 0; d < dim; ++d)
+          v_n += velocity[d] * n[d];
+        if (v_n > 0.)
+          for (unsigned int d = 0; d < dim; ++d)
+            velocity[d] -= v_n * n[d];
+      }
+  }
+
+
+
+  template <int dim>
+  void
+  FrictionWalls<dim>::begin_explicit_solve() const
+  {
+    std::fill(reactions.begin(), reactions.end(), Reaction());
+  }
+
+
+
+  template <int dim>
+  void
+  FrictionWalls<dim>::constrain_explicit(const unsigned int node,
+                                         const double       mass,
+                                         double *           velocity,
+                                         double *           acceleration,
+                                         const double       dt,
+                                         const double) const
+  {
+    for (unsigned int c = first_contact[node]; c < first_contact[node + 1];
+         ++c)
+      {
+        // v*: where the node would end the step without this wall.
+        Tensor<1, dim> trial;
+        for (unsigned int d = 0; d < dim; ++d)
+          trial[d] = velocity[d] + dt * acceleration[d];
+        const Tensor<1, dim> &n   = contacts[c].outward;
+        const double          v_n = trial * n;
+        if (!(v_n > 0.))
+          continue;
+        const Tensor<1, dim> v_t     = trial - v_n * n;
+        const double         sliding = v_t.norm();
+        const double         limit   = walls[contacts[c].wall].friction * v_n;
+        // Stick where the wall can stop the sliding, else slip against it.
+        const Tensor<1, dim> v_end =
+          sliding <= limit ? Tensor<1, dim>() : (1. - limit / sliding) * v_t;
+        reactions[c].normal     = mass * v_n / dt;
+        reactions[c].tangential = mass * (v_t - v_end) / dt;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            velocity[d]     = v_end[d];
+            acceleration[d] = 0.;
+          }
+      }
+  }
+
+
+
+  template <int dim>
+  std::vector<std::string>
+  FrictionWalls<dim>::force_names() const
+  {
+    std::vector<std::string> names;
+    for (const Wall &wall : walls)
+      {
+        names.push_back(wall.name + "_normal_force");
+        names.push_back(wall.name + "_tangential_force");
+      }
+    return names;
+  }
+
+
+
+  template <int dim>
+  std::vector<Tensor<1, dim>>
+  FrictionWalls<dim>::local_wall_forces() const
+  {
+    const unsigned int n_owned =
+      grid.node_partitioner()->locally_owned_size();
+    std::vector<Tensor<1, dim>> totals(walls.size());
+    for (unsigned int node = 0; node < n_owned; ++node)
+      for (unsigned int c = first_contact[node]; c < first_contact[node + 1];
+           ++c)
+        totals[contacts[c].wall] +=
+          reactions[c].normal * contacts[c].outward + reactions[c].tangential;
+    return totals;
+  }
+
+
+
+  template <int dim>
+  Tensor<1, dim>
+  FrictionWalls<dim>::tangent_of(const Tensor<1, dim> &normal)
+  {
+    Tensor<1, dim> t;
+    if constexpr (dim == 2)
+      t = cross_product_2d(-normal);
+    return t;
+  }
+
+
+
+  template <int dim>
+  std::vector<double>
+  FrictionWalls<dim>::forces() const
+  {
+    std::vector<double>               values;
+    const MPI_Comm                    comm  = grid.get_communicator();
+    const std::vector<Tensor<1, dim>> local = local_wall_forces();
+    for (unsigned int w = 0; w < walls.size(); ++w)
+      {
+        const Tensor<1, dim> total = Utilities::MPI::sum(local[w], comm);
+        const Tensor<1, dim> &n      = walls[w].mean_normal;
+        const double          normal = total * n;
+        const Tensor<1, dim>  across = total - normal * n;
+        values.push_back(normal);
+        values.push_back(dim == 2 ? across * tangent_of(n) : across.norm());
+      }
+    return values;
+  }
+
+
+
+  template <int dim>
+  void
+  FrictionWalls<dim>::write_tractions(const std::string &directory,
+                                      const unsigned int step) const
+  {
+    const MPI_Comm     comm = grid.get_communicator();
+    const unsigned int n_owned =
+      grid.node_partitioner()->locally_owned_size();
+    for (unsigned int w = 0; w < walls.size(); ++w)
+      {
+        // Rows of dim + 2 numbers: position, normal and tangential
+        // traction.
+        std::vector<std::array<double, dim + 2>> rows;
+        for (unsigned int node = 0; node < n_owned; ++node)
+          for (unsigned int c = first_contact[node];
+               c < first_contact[node + 1];
+               ++c)
+            if (contacts[c].wall == w)
+              {
+                const Contact &          contact = contacts[c];
+                const Tensor<1, dim> &   T       = reactions[c].tangential;
+                std::array<double, dim + 2> row;
+                for (unsigned int d = 0; d < dim; ++d)
+                  row[d] = contact.position[d];
+                row[dim]     = reactions[c].normal / contact.area;
+                row[dim + 1] = (dim == 2 ? T * tangent_of(contact.outward) :
+                                           T.norm()) /
+                               contact.area;
+                rows.push_back(row);
+              }
+        const auto gathered = Utilities::MPI::gather(comm, rows, 0);
+        if (Utilities::MPI::this_mpi_process(comm) != 0)
+          continue;
+        std::vector<std::array<double, dim + 2>> all;
+        for (const auto &part : gathered)
+          all.insert(all.end(), part.begin(), part.end());
+        std::sort(all.begin(), all.end());
+        std::ostringstream name;
+        name << directory << "/" << walls[w].name << "_tractions_"
+             << std::setw(6) << std::setfill('0') << step << ".csv";
+        std::ofstream file(name.str());
+        const char *  axes = "xyz";
+        for (unsigned int d = 0; d < dim; ++d)
+          file << axes[d] << ',';
+        file << "normal_traction,tangential_traction\n"
+             << std::setprecision(12);
+        for (const auto &row : all)
+          for (unsigned int k = 0; k < dim + 2; ++k)
+            file << row[k] << (k + 1 < dim + 2 ? ',' : '\n');
+        if (!file)
+          throw RunError("Cannot write the wall tractions '" + name.str() +
+                         "'.");
+      }
+  }
+
+
+
+  template class FrictionWalls<2>;
+  template class FrictionWalls<3>;
+} // namespace mpm

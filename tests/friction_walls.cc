@@ -1,0 +1,288 @@
+// Walls with Coulomb friction (Boundary conditions/Friction boundaries),
+// explicit MUSL, checked against mechanics from outside the code:
+// - an elastic block on an inclined plane (scenes/friction_block.prm:
+//   gravity tilted by 30 degrees): with mu = 0.2 < tan 30 its centre of
+//   mass slides with a = g (sin 30 - mu cos 30) (the rigid-block law),
+//   checked within 1 % over 0.5 s, and the same block on a frictionless
+//   slip floor (a = g sin 30) and a fixed floor (a = 0) misses that law
+//   by far, so the check tells friction from its absence and from no-slip;
+//   with mu = 0.7 > tan 30 it sticks (|x - x0| < 1e-4 m);
+// - at every step, the wall force of the time series: |T| <= mu N to
+//   round-off; sliding, the friction impulse is mu times the normal
+//   impulse within 1 % (nodes at the block's edges, with little mass and
+//   large accelerations, may stick while the block slides); and the point
+//   momentum changes by dt (M g - wall force) to round-off, since the
+//   wall's reaction is the only other force (Newton's third law at the
+//   nodes);
+// - at each output time, every node of the traction file: |t_T| <= mu t_N
+//   to round-off, t_N >= 0, and, sliding, |t_T| = mu t_N at every node
+//   that carries load; the normal tractions integrate to the time series'
+//   normal force (the end nodes of the floor carry half a cell of it);
+// - the block thrown up off the floor (initial velocity 0.5, 2 m/s): the
+//   one-sided wall lets it go, so its momentum is M (v0 + g t) to the 12
+//   digits of the time series, as in free flight; a slip floor, which holds the block's
+//   bottom nodes, does not let it go.
+
+#include <deal.II/base/mpi.h>
+
+#include <mpm/core/application.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "tests.h"
+
+using namespace dealii;
+
+namespace
+{
+  const double g     = 9.81;
+  const double theta = numbers::PI / 6.;
+
+  mpm_tests::Columns
+  run(const std::string &name, const std::vector<std::string> &settings)
+  {
+    // No traction files of an earlier run.
+    if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+      std::filesystem::remove_all("output-" + name);
+    MPI_Barrier(MPI_COMM_WORLD);
+    return mpm_tests::run_scene("scenes/friction_block.prm",
+                                "output-" + name,
+                                settings);
+  }
+
+  /** The centre of mass's acceleration along the plane, by a fit of x(t). */
+  double
+  acceleration_along_plane(mpm_tests::Columns &csv)
+  {
+    // x - x0 = a t^2 / 2 + v-free: fit a by least squares over all rows.
+    const double x0 = csv["centre_of_mass_x"][0];
+    double       num = 0., den = 0.;
+    for (unsigned int n = 0; n < csv["time"].size(); ++n)
+      {
+        const double s = 0.5 * csv["time"][n] * csv["time"][n];
+        num += s * (csv["centre_of_mass_x"][n] - x0);
+        den += s * s;
+      }
+    return num / den;
+  }
+
+  /**
+   * The largest gap, over rows, between the change of momentum since the
+   * start and the impulse sum dt (M g - F), F the force on the floor,
+   * relative to M g t. Summed from the start, so that the 12 digits of
+   * the time series' momentum do not limit it.
+   */
+  double
+  momentum_balance(mpm_tests::Columns &csv)
+  {
+    const double M   = csv["mass"][0];
+    double       gap = 0., impulse_x = 0., impulse_y = 0.;
+    for (unsigned int n = 1; n < csv["time"].size(); ++n)
+      {
+        const double dt = csv["dt"][n];
+        // The floor's outward normal is -y, its tangent (the normal turned
+        // by +90 degrees) is +x: the material's force on it is
+        // (T, -N), the floor's on the material (-T, N).
+        impulse_x +=
+          dt * (M * g * std::sin(theta) - csv["bottom_tangential_force"][n]);
+        impulse_y +=
+          dt * (-M * g * std::cos(theta) + csv["bottom_normal_force"][n]);
+        gap = std::max(
+          gap,
+          std::max(std::abs(csv["momentum_x"][n] - csv["momentum_x"][0] -
+                            impulse_x),
+                   std::abs(csv["momentum_y"][n] - csv["momentum_y"][0] -
+                            impulse_y)) /
+            (M * g * csv["time"][n]));
+      }
+    return gap;
+  }
+
+
+
+  /** Check the traction files of a run; returns the number of files. */
+  unsigned int
+  check_tractions(const std::string &directory,
+                  const double       mu,
+                  const bool         slides,
+                  mpm_tests::Columns &series)
+  {
+    unsigned int files = 0;
+    bool         bound = true, slip = true, integral = true;
+    for (const auto &entry : std::filesystem::directory_iterator(directory))
+      {
+        const std::string name = entry.path().filename().string();
+        if (name.rfind("bottom_tractions_", 0) != 0)
+          continue;
+        ++files;
+        const unsigned int step =
+          std::stoi(name.substr(std::string("bottom_tractions_").size()));
+        mpm_tests::Columns t = mpm_tests::read_csv(entry.path().string());
+        double             largest = 0., sum = 0.;
+        for (const double n : t["normal_traction"])
+          largest = std::max(largest, n);
+        // Interior nodes carry h of the floor, the end nodes h / 2.
+        const double h = 0.05;
+        for (unsigned int k = 0; k < t["x"].size(); ++k)
+          {
+            const double n  = t["normal_traction"][k];
+            const double tt = std::abs(t["tangential_traction"][k]);
+            bound &= n >= 0. && tt <= mu * n + 1e-12 * largest;
+            if (slides && n > 1e-6 * largest)
+              slip &= std::abs(tt - mu * n) <= 1e-9 * largest;
+            const bool end = t["x"][k] < 1e-12 || t["x"][k] > 2. - 1e-12;
+            sum += n * (end ? 0.5 * h : h);
+          }
+        // The row of the time series at this step.
+        for (unsigned int r = 0; r < series["step"].size(); ++r)
+          if (static_cast<unsigned int>(series["step"][r]) == step)
+            integral &= std::abs(sum - series["bottom_normal_force"][r]) <=
+                        1e-9 * series["bottom_normal_force"][r];
+      }
+    mpm_tests::check("tractions: t_N >= 0 and |t_T| <= mu t_N at every "
+                     "node of every traction file",
+                     files > 0 && bound);
+    if (slides)
+      mpm_tests::check("tractions: |t_T| = mu t_N at every node that "
+                       "carries load, while the block slides",
+                       slip);
+    mpm_tests::check("tractions: their integral over the floor is the "
+                     "normal force of the time series",
+                     integral);
+    return files;
+  }
+} // namespace
+
+
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  mpm_tests::initlog();
+
+  // Sliding: mu = 0.2.
+  {
+    auto csv = run("slide", {});
+    const double a     = acceleration_along_plane(csv);
+    const double exact = g * (std::sin(theta) - 0.2 * std::cos(theta));
+    deallog << "mu = 0.2: a / (g (sin - mu cos)) = " << a / exact
+            << std::endl;
+    mpm_tests::check("mu = 0.2: the block slides with g (sin 30 - mu cos 30) "
+                     "within 1 %",
+                     std::abs(a / exact - 1.) < 0.01);
+    double bound = 0., normal_impulse = 0., tangential_impulse = 0.;
+    for (unsigned int n = 1; n < csv["time"].size(); ++n)
+      {
+        bound = std::max(bound,
+                         std::abs(csv["bottom_tangential_force"][n]) -
+                           0.2 * csv["bottom_normal_force"][n]);
+        normal_impulse += csv["dt"][n] * csv["bottom_normal_force"][n];
+        tangential_impulse +=
+          csv["dt"][n] * csv["bottom_tangential_force"][n];
+      }
+    deallog << "mu = 0.2: friction impulse / normal impulse = "
+            << tangential_impulse / normal_impulse << std::endl;
+    mpm_tests::check("mu = 0.2: |T| <= mu N at every step, to 1e-12 M g",
+                     bound < 1e-12 * csv["mass"][0] * g);
+    mpm_tests::check("mu = 0.2: friction impulse = mu x normal impulse "
+                     "within 1 %",
+                     std::abs(tangential_impulse / normal_impulse / 0.2 - 1.) <
+                       0.01);
+    mpm_tests::check("mu = 0.2: momentum changes by the sum of dt (M g - wall force), "
+                     "to 1e-9",
+                     momentum_balance(csv) < 1e-9);
+    check_tractions("output-slide", 0.2, true, csv);
+  }
+
+  // The same block where the floor has no friction, and where it is fixed.
+  {
+    auto         slip  = run("frictionless",
+                    {"Boundary conditions/Friction boundaries=",
+                     "Boundary conditions/Slip boundaries=bottom"});
+    auto         fixed = run("fixed",
+                     {"Boundary conditions/Friction boundaries=",
+                      "Boundary conditions/Fixed boundaries=bottom"});
+    const double exact = g * (std::sin(theta) - 0.2 * std::cos(theta));
+    const double a_slip  = acceleration_along_plane(slip);
+    const double a_fixed = acceleration_along_plane(fixed);
+    deallog << "slip floor: a / (g sin 30) = " << a_slip / (g * 0.5)
+            << "; fixed floor: a / (g (sin - mu cos)) = " << a_fixed / exact
+            << std::endl;
+    mpm_tests::check("a frictionless floor gives g sin 30 (within 1 %), "
+                     "not the Coulomb law",
+                     std::abs(a_slip / (g * 0.5) - 1.) < 0.01 &&
+                       std::abs(a_slip / exact - 1.) > 0.1);
+    mpm_tests::check("a fixed floor holds the block, far from the Coulomb "
+                     "law",
+                     std::abs(a_fixed / exact - 1.) > 0.5);
+  }
+
+  // Sticking: mu = 0.7.
+  {
+    auto csv =
+      run("stick",
+          {"Boundary conditions/Friction boundaries=bottom: 0.7"});
+    double travel = 0., bound = 0.;
+    for (unsigned int n = 0; n < csv["time"].size(); ++n)
+      {
+        travel = std::max(travel,
+                          std::abs(csv["centre_of_mass_x"][n] -
+                                   csv["centre_of_mass_x"][0]));
+        bound  = std::max(bound,
+                         std::abs(csv["bottom_tangential_force"][n]) -
+                           0.7 * csv["bottom_normal_force"][n]);
+      }
+    deallog << "mu = 0.7: largest travel " << travel << " m" << std::endl;
+    mpm_tests::check("mu = 0.7: the block sticks, |x - x0| < 1e-4 m over "
+                     "0.5 s",
+                     travel < 1e-4);
+    mpm_tests::check("mu = 0.7: |T| <= mu N at every step, to 1e-12 M g",
+                     bound < 1e-12 * csv["mass"][0] * g);
+    mpm_tests::check("mu = 0.7: momentum changes by the sum of dt (M g - wall force), "
+                     "to 1e-9",
+                     momentum_balance(csv) < 1e-9);
+    check_tractions("output-stick", 0.7, false, csv);
+  }
+
+  // Thrown up off the floor, without and with a one-sided wall.
+  for (const bool one_sided : {true, false})
+    {
+      auto csv = run(one_sided ? "thrown" : "thrown_slip",
+                     {"Bodies/block/Initial velocity=0.5; 2",
+                      "Time stepping/End time=0.2",
+                      one_sided ? "Boundary conditions/Friction boundaries="
+                                  "bottom: 0.5" :
+                                  "Boundary conditions/Friction boundaries=",
+                      one_sided ? "Boundary conditions/Slip boundaries=" :
+                                  "Boundary conditions/Slip boundaries="
+                                  "bottom"});
+      const double M   = csv["mass"][0];
+      double       gap = 0.;
+      for (unsigned int n = 0; n < csv["time"].size(); ++n)
+        {
+          const double t = csv["time"][n];
+          gap            = std::max(
+            gap,
+            std::max(std::abs(csv["momentum_x"][n] -
+                              M * (0.5 + g * std::sin(theta) * t)),
+                     std::abs(csv["momentum_y"][n] -
+                              M * (2. - g * std::cos(theta) * t))) /
+              (M * 2.));
+        }
+      deallog << (one_sided ? "friction floor" : "slip floor")
+              << ": momentum off free flight by " << gap << " M v0"
+              << std::endl;
+      if (one_sided)
+        mpm_tests::check("thrown up: the friction floor lets the block go; "
+                         "momentum of free flight to the time series' 12 "
+                         "digits",
+                         gap < 1e-10);
+      else
+        mpm_tests::check("thrown up: a slip floor holds it back (more than "
+                         "1 % off free flight)",
+                         gap > 0.01);
+    }
+  return 0;
+}
