@@ -159,6 +159,20 @@ main(int argc, char **argv)
            with({"Time stepping/Scheme=quasi-static",
                  "Boundary conditions/Fixed boundaries=",
                  "Boundary conditions/Friction boundaries=bottom: 0.3"}));
+  run_case("obstacle outside the grid",
+           with({"Obstacles/Names=ram",
+                 "Obstacles/ram/Lower corner=5, 5",
+                 "Obstacles/ram/Upper corner=6, 6"}));
+  run_case("negative friction coefficient of an obstacle",
+           with({"Obstacles/Names=ram",
+                 "Obstacles/ram/Lower corner=0.1, 0.1",
+                 "Obstacles/ram/Upper corner=0.2, 0.2",
+                 "Obstacles/ram/Friction coefficient=-1"}));
+  run_case("obstacle with the quasi-static scheme",
+           with({"Time stepping/Scheme=quasi-static",
+                 "Obstacles/Names=ram",
+                 "Obstacles/ram/Lower corner=0.1, 0.1",
+                 "Obstacles/ram/Upper corner=0.2, 0.2"}));
   run_case("both a total force and a traction",
            with({"Time stepping/Scheme=quasi-static",
                  "Loads/Total force=0, -1",

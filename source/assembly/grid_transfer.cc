@@ -134,7 +134,7 @@ namespace mpm
   GridTransfer<dim>::compute_nodal_acceleration(const double dt)
   {
     for (const NodalCondition<dim> *condition : conditions)
-      condition->begin_explicit_solve();
+      condition->begin_explicit_solve(time, dt);
     for (const unsigned int node : nodes.nodes_to_solve())
       {
         double *     v        = nodes.values_of(node);

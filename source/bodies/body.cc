@@ -5,6 +5,7 @@
 #include <mpm/bodies/body.h>
 #include <mpm/base/input_error.h>
 #include <mpm/base/parse.h>
+#include <mpm/base/shape_parameters.h>
 
 #include <algorithm>
 #include <iostream>
@@ -16,31 +17,10 @@ namespace mpm
   void
   Body<dim>::declare_parameters(ParameterHandler &prm)
   {
-    prm.declare_entry("Shape",
-                      "box",
-                      Patterns::Selection("box|disk|sphere|cylinder|polygon"),
-                      "Shape filled with points: 'box' (Lower corner, Upper "
-                      "corner), 'disk' in 2D or 'sphere' in 3D (Center, "
-                      "Radius), 'cylinder' in 3D (Center of one end, Axis, "
-                      "Radius), 'polygon' in 2D (Vertices). Only the part "
-                      "inside the grid gets points, so a grid that starts "
-                      "on a symmetry plane cuts the shape there.");
-    prm.declare_entry("Lower corner", "", Patterns::Anything(),
-                      "Box: the corner with the smallest coordinates, "
-                      "e.g. '0, 0'.");
-    prm.declare_entry("Upper corner", "", Patterns::Anything(),
-                      "Box: the corner with the largest coordinates.");
-    prm.declare_entry("Center", "", Patterns::Anything(),
-                      "Disk or sphere: its centre, e.g. '0.2, 0.2'. "
-                      "Cylinder: the centre of one end face.");
-    prm.declare_entry("Radius", "0", Patterns::Double(0.),
-                      "Disk, sphere or cylinder: its radius.");
-    prm.declare_entry("Axis", "", Patterns::Anything(),
-                      "Cylinder: the vector from the centre of one end face "
-                      "to the centre of the other, e.g. '0, 0, 0.0324'.");
-    prm.declare_entry("Vertices", "", Patterns::Anything(),
-                      "Polygon: its vertices in order, ';'-separated, e.g. "
-                      "'0,0; 1,0; 0,1'.");
+    ShapeParameters<dim>::declare_parameters(
+      prm,
+      "filled with points. Only the part inside the grid gets points, so a "
+      "grid that starts on a symmetry plane cuts the shape there.");
     prm.declare_entry("Material", "", Patterns::Anything(),
                       "Name of the material (one of Materials/Names).");
     prm.declare_entry("Points per cell direction", "2", Patterns::Integer(1, 10),
@@ -97,63 +77,10 @@ namespace mpm
     else
       placement_1d = QIterated<1>(QMidpoint<1>(), n);
     placement = Quadrature<dim>(placement_1d);
-    const std::string shape_name = prm.get("Shape");
     // The origin of the Initial velocity expressions: the centre of a disk,
     // sphere or cylinder end.
     Point<dim> center;
-    if (shape_name == "box")
-      {
-        const Point<dim> lower_corner = parse_point<dim>(
-          prm.get("Lower corner"), section_path + "/Lower corner");
-        const Point<dim> upper_corner = parse_point<dim>(
-          prm.get("Upper corner"), section_path + "/Upper corner");
-        for (unsigned int d = 0; d < dim; ++d)
-          if (!(upper_corner[d] > lower_corner[d]))
-            throw InputError(section_path +
-                             "/Upper corner must be larger than Lower corner "
-                             "in every coordinate.");
-        shape = std::make_unique<BoxShape<dim>>(lower_corner, upper_corner);
-      }
-    else if (shape_name == "disk" || shape_name == "sphere")
-      {
-        if ((shape_name == "disk") != (dim == 2))
-          throw InputError(section_path + "/Shape = " + shape_name +
-                           " needs Dimension = " + (dim == 2 ? "3" : "2") +
-                           "; use " + (dim == 2 ? "disk" : "sphere") + ".");
-        center = parse_point<dim>(prm.get("Center"), section_path + "/Center");
-        const double radius = prm.get_double("Radius");
-        if (!(radius > 0.))
-          throw InputError(section_path + "/Radius must be positive.");
-        shape = std::make_unique<BallShape<dim>>(center, radius);
-      }
-    else if (shape_name == "cylinder")
-      {
-        if (dim != 3)
-          throw InputError(section_path +
-                           "/Shape = cylinder needs Dimension = 3; in 2D "
-                           "use a box.");
-        center = parse_point<dim>(prm.get("Center"), section_path + "/Center");
-        const Tensor<1, dim> axis =
-          parse_point<dim>(prm.get("Axis"), section_path + "/Axis");
-        const double radius = prm.get_double("Radius");
-        if (!(radius > 0.))
-          throw InputError(section_path + "/Radius must be positive.");
-        if (!(axis.norm() > 0.))
-          throw InputError(section_path + "/Axis must not be zero.");
-        shape = std::make_unique<CylinderShape<dim>>(center, axis, radius);
-      }
-    else
-      {
-        if (dim != 2)
-          throw InputError(section_path +
-                           "/Shape = polygon is available in 2D only.");
-        const std::vector<Point<dim>> vertices = parse_point_list<dim>(
-          prm.get("Vertices"), section_path + "/Vertices");
-        if (vertices.size() < 3)
-          throw InputError(section_path +
-                           "/Vertices must list at least 3 points.");
-        shape = std::make_unique<PolygonShape<dim>>(vertices);
-      }
+    shape = ShapeParameters<dim>::create(prm, section_path, center);
 
     const std::string material_name = prm.get("Material");
     const auto        found =

@@ -1,6 +1,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <mpm/base/input_error.h>
+#include <mpm/boundary/coulomb_contact.h>
 #include <mpm/boundary/friction_walls.h>
 
 #include <algorithm>
@@ -198,7 +199,7 @@ namespace mpm
 
   template <int dim>
   void
-  FrictionWalls<dim>::begin_explicit_solve() const
+  FrictionWalls<dim>::begin_explicit_solve(const double, const double) const
   {
     std::fill(reactions.begin(), reactions.end(), Reaction());
   }
@@ -217,25 +218,22 @@ namespace mpm
     for (unsigned int c = first_contact[node]; c < first_contact[node + 1];
          ++c)
       {
-        // v*: where the node would end the step without this wall.
+        // Where the node would end the step without this wall.
         Tensor<1, dim> trial;
         for (unsigned int d = 0; d < dim; ++d)
           trial[d] = velocity[d] + dt * acceleration[d];
-        const Tensor<1, dim> &n   = contacts[c].outward;
-        const double          v_n = trial * n;
-        if (!(v_n > 0.))
+        const CoulombContact<dim> law(trial,
+                                      contacts[c].outward,
+                                      walls[contacts[c].wall].friction,
+                                      mass,
+                                      dt);
+        if (!law.active)
           continue;
-        const Tensor<1, dim> v_t     = trial - v_n * n;
-        const double         sliding = v_t.norm();
-        const double         limit   = walls[contacts[c].wall].friction * v_n;
-        // Stick where the wall can stop the sliding, else slip against it.
-        const Tensor<1, dim> v_end =
-          sliding <= limit ? Tensor<1, dim>() : (1. - limit / sliding) * v_t;
-        reactions[c].normal     = mass * v_n / dt;
-        reactions[c].tangential = mass * (v_t - v_end) / dt;
+        reactions[c].normal     = law.normal_force;
+        reactions[c].tangential = law.tangential_force;
         for (unsigned int d = 0; d < dim; ++d)
           {
-            velocity[d]     = v_end[d];
+            velocity[d]     = law.end[d];
             acceleration[d] = 0.;
           }
       }

@@ -130,6 +130,13 @@ namespace mpm
         "Names of the bodies of the scene. Each has a subsection of the same "
         "name inside Bodies.");
       prm.leave_subsection();
+      prm.enter_subsection("Obstacles");
+      NamedSections::declare_names(
+        prm,
+        "",
+        "Names of the rigid obstacles of the scene (explicit scheme). Each "
+        "has a subsection of the same name inside Obstacles.");
+      prm.leave_subsection();
     }
 
     /**
@@ -146,12 +153,11 @@ namespace mpm
     template <int dim>
     void
     run_scene(ParameterHandler &              prm,
-              const std::vector<std::string> &material_names,
-              const std::vector<std::string> &body_names,
+              const SceneNames &              names,
               const bool                      restart)
     {
       Simulator<dim> simulator(
-        prm, material_names, body_names, MPI_COMM_WORLD, restart);
+        prm, names, MPI_COMM_WORLD, restart);
       try
         {
           simulator.run();
@@ -176,8 +182,8 @@ namespace mpm
     {
       ParameterHandler prm;
       declare_first_pass(prm);
-      Simulator<2>::declare_parameters(prm, {"example material"},
-                                       {"example body"});
+      Simulator<2>::declare_parameters(
+        prm, {{"example material"}, {"example body"}, {"example obstacle"}});
       prm.print_parameters(std::cout, ParameterHandler::PRM);
     }
 
@@ -234,20 +240,24 @@ namespace mpm
         apply_override(first, o, false);
       const unsigned int dim = first.get_integer("Dimension");
       first.enter_subsection("Materials");
-      const auto material_names =
-        NamedSections::parse_names(first, "Materials");
+      SceneNames names;
+      names.materials = NamedSections::parse_names(first, "Materials");
       first.leave_subsection();
       first.enter_subsection("Bodies");
-      const auto body_names = NamedSections::parse_names(first, "Bodies");
+      names.bodies = NamedSections::parse_names(first, "Bodies");
+      first.leave_subsection();
+      first.enter_subsection("Obstacles");
+      names.obstacles =
+        NamedSections::parse_names(first, "Obstacles", true);
       first.leave_subsection();
 
       // Second pass: everything, strictly.
       ParameterHandler prm;
       declare_first_pass(prm);
       if (dim == 2)
-        Simulator<2>::declare_parameters(prm, material_names, body_names);
+        Simulator<2>::declare_parameters(prm, names);
       else
-        Simulator<3>::declare_parameters(prm, material_names, body_names);
+        Simulator<3>::declare_parameters(prm, names);
       prm.parse_input(filename);
       for (const auto &o : overrides)
         apply_override(prm, o, true);
@@ -262,9 +272,9 @@ namespace mpm
       prm.leave_subsection();
 
       if (dim == 2)
-        run_scene<2>(prm, material_names, body_names, restart);
+        run_scene<2>(prm, names, restart);
       else
-        run_scene<3>(prm, material_names, body_names, restart);
+        run_scene<3>(prm, names, restart);
       return 0;
     }
   } // namespace

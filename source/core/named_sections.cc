@@ -22,11 +22,12 @@ namespace mpm
 
     std::vector<std::string>
     parse_names(const dealii::ParameterHandler &prm,
-                const std::string &             section_path)
+                const std::string &             section_path,
+                const bool                      may_be_empty)
     {
       const std::vector<std::string> names =
         dealii::Utilities::split_string_list(prm.get("Names"));
-      if (names.empty())
+      if (names.empty() && !may_be_empty)
         throw InputError(section_path +
                          "/Names is empty: name at least one, and describe "
                          "each in a subsection of that name.");

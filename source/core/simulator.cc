@@ -19,10 +19,8 @@ namespace mpm
 {
   template <int dim>
   void
-  Simulator<dim>::declare_parameters(
-    ParameterHandler &              prm,
-    const std::vector<std::string> &material_names,
-    const std::vector<std::string> &body_names)
+  Simulator<dim>::declare_parameters(ParameterHandler &prm,
+                                     const SceneNames &names)
   {
     prm.declare_entry("Gravity",
                       dim == 2 ? "0, 0" : "0, 0, 0",
@@ -57,7 +55,7 @@ namespace mpm
     Checkpoint::declare_parameters(prm);
 
     prm.enter_subsection("Materials");
-    for (const auto &name : material_names)
+    for (const auto &name : names.materials)
       {
         prm.enter_subsection(name);
         Material::declare_parameters(prm);
@@ -66,23 +64,23 @@ namespace mpm
     prm.leave_subsection();
 
     prm.enter_subsection("Bodies");
-    for (const auto &name : body_names)
+    for (const auto &name : names.bodies)
       {
         prm.enter_subsection(name);
         Body<dim>::declare_parameters(prm);
         prm.leave_subsection();
       }
     prm.leave_subsection();
+    RigidObstacles<dim>::declare_parameters(prm, names.obstacles);
   }
 
 
 
   template <int dim>
-  Simulator<dim>::Simulator(ParameterHandler &              prm,
-                            const std::vector<std::string> &material_names,
-                            const std::vector<std::string> &body_names,
-                            const MPI_Comm                  communicator,
-                            const bool                      restart)
+  Simulator<dim>::Simulator(ParameterHandler &prm,
+                            const SceneNames &names,
+                            const MPI_Comm    communicator,
+                            const bool        restart)
     : communicator(communicator)
     , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
     // Not bound to the communicator: a run that stops with an error must not
@@ -115,7 +113,7 @@ namespace mpm
     prm.leave_subsection();
 
     prm.enter_subsection("Materials");
-    for (const auto &name : material_names)
+    for (const auto &name : names.materials)
       {
         prm.enter_subsection(name);
         materials.push_back(
@@ -125,10 +123,10 @@ namespace mpm
     prm.leave_subsection();
 
     prm.enter_subsection("Bodies");
-    for (const auto &name : body_names)
+    for (const auto &name : names.bodies)
       {
         prm.enter_subsection(name);
-        bodies.emplace_back(prm, name, "Bodies/" + name, material_names);
+        bodies.emplace_back(prm, name, "Bodies/" + name, names.materials);
         prm.leave_subsection();
       }
     prm.leave_subsection();
@@ -147,6 +145,13 @@ namespace mpm
                        "with the quasi-static and Newmark schemes use "
                        "Contact boundaries (no slip where the material "
                        "presses) or Slip boundaries.");
+    obstacles =
+      std::make_unique<RigidObstacles<dim>>(prm, names.obstacles, *grid);
+    if (!obstacles->empty() && scheme_name != "explicit")
+      throw InputError("Obstacles act in the explicit scheme (Time "
+                       "stepping/Scheme = explicit); the quasi-static and "
+                       "Newmark schemes take walls on the grid's "
+                       "boundaries only.");
 
     // Set up the grid and everything on it (the conditions find their
     // nodes when the grid announces itself).
@@ -197,7 +202,7 @@ namespace mpm
       throw InputError("No body has a material point inside the grid: check "
                        "the shapes in Bodies against Grid/Arguments.");
 
-    nodal_conditions = {dirichlet.get(), friction_walls.get()};
+    nodal_conditions = {dirichlet.get(), friction_walls.get(), obstacles.get()};
     transfer         = std::make_unique<GridTransfer<dim>>(
       *points, *basis, *nodes, nodal_conditions, gravity);
     const typename TimeScheme<dim>::Scene scene{*grid,

@@ -157,6 +157,7 @@ namespace mpm
     hanging_nodes.close();
 
     cells.assign(triangulation.n_active_cells(), CellGeometry());
+    node_positions.assign(n_nodes(), Point<dim>());
     bool   cartesian = true;
     double min_edge  = std::numeric_limits<double>::max();
     for (const auto &cell : node_dof_handler.active_cell_iterators())
@@ -168,6 +169,7 @@ namespace mpm
           {
             data.nodes[v]    = node_of_dof(cell->vertex_dof_index(v, 0));
             data.vertices[v] = cell->vertex(v);
+            node_positions[data.nodes[v]] = cell->vertex(v);
           }
 
         // Axis-aligned box: vertex v = vertex 0 + sum over the set bits d of

@@ -21,16 +21,8 @@ namespace mpm
    * only while it presses (unilateral: a body may lift off) and resists
    * sliding up to mu times the normal force.
    *
-   * The law acts at the wall's nodes, as the m/dt limit of a penalty
-   * (Bardenhagen et al. 2000 for a rigid wall; CB-Geo and Uintah act
-   * alike). With v* the velocity a node would reach without the wall and n
-   * the wall's outward normal at the node:
-   * - v*.n <= 0: the node moves away from the wall; no force;
-   * - otherwise the wall takes the normal part v_n = v*.n, with normal
-   *   force m v_n / dt, and the tangential part v_t either stops (stick,
-   *   |v_t| <= mu v_n) or loses mu v_n along itself (slip), so that the
-   *   tangential force is never above mu times the normal force and equals
-   *   it while the material slips.
+   * The law acts at the wall's nodes (CoulombContact), on the velocity
+   * the node would reach without the wall.
    * A node on several walls (a corner) meets each wall's law in turn. The
    * coefficient `0` gives a frictionless unilateral wall and `inf` one on
    * which the material cannot slide while it presses.
@@ -83,7 +75,7 @@ namespace mpm
                        double *           velocity) const override;
 
     void
-    begin_explicit_solve() const override;
+    begin_explicit_solve(const double time, const double dt) const override;
 
     void
     constrain_explicit(const unsigned int node,

@@ -14,6 +14,14 @@ namespace mpm
    * subsection declared before parsing, so the names are read in a first,
    * lenient pass (see Application) and the subsections declared from them.
    */
+  /** The names of a scene's materials, bodies and obstacles. */
+  struct SceneNames
+  {
+    std::vector<std::string> materials;
+    std::vector<std::string> bodies;
+    std::vector<std::string> obstacles;
+  };
+
   namespace NamedSections
   {
     /** Declare the list entry `Names` in the current subsection. */
@@ -22,10 +30,14 @@ namespace mpm
                   const std::string &       default_names,
                   const std::string &       documentation);
 
-    /** Read `Names`, reject empty and repeated names. */
+    /**
+     * Read `Names`; reject repeated names and, unless `may_be_empty`, an
+     * empty list.
+     */
     std::vector<std::string>
     parse_names(const dealii::ParameterHandler &prm,
-                const std::string &             section_path);
+                const std::string &             section_path,
+                const bool                      may_be_empty = false);
   } // namespace NamedSections
 } // namespace mpm
 

@@ -13,7 +13,9 @@
 #include <mpm/boundary/dirichlet_conditions.h>
 #include <mpm/boundary/friction_walls.h>
 #include <mpm/boundary/point_loads.h>
+#include <mpm/boundary/rigid_obstacles.h>
 #include <mpm/core/checkpoint.h>
+#include <mpm/core/named_sections.h>
 #include <mpm/bodies/point_seeder.h>
 #include <mpm/grid/grid.h>
 #include <mpm/materials/material.h>
@@ -47,19 +49,16 @@ namespace mpm
      * Application declares for its first pass.
      */
     static void
-    declare_parameters(ParameterHandler &              prm,
-                       const std::vector<std::string> &material_names,
-                       const std::vector<std::string> &body_names);
+    declare_parameters(ParameterHandler &prm, const SceneNames &names);
 
     /**
      * Parse the scene and set everything up; bad input throws InputError.
      * `restart`: continue from the checkpoint in the output directory.
      */
-    Simulator(ParameterHandler &              prm,
-              const std::vector<std::string> &material_names,
-              const std::vector<std::string> &body_names,
-              const MPI_Comm                  communicator,
-              const bool                      restart = false);
+    Simulator(ParameterHandler &prm,
+              const SceneNames &names,
+              const MPI_Comm    communicator,
+              const bool        restart = false);
 
     /** Run to the end time. A run that cannot go on throws RunError. */
     void
@@ -123,6 +122,7 @@ namespace mpm
     std::unique_ptr<GridBasis<dim>>           basis;
     std::unique_ptr<DirichletConditions<dim>> dirichlet;
     std::unique_ptr<FrictionWalls<dim>>       friction_walls;
+    std::unique_ptr<RigidObstacles<dim>>      obstacles;
     std::string                               output_directory;
     /** Everything that acts at the grid's nodes, in the order it acts. */
     std::vector<const NodalCondition<dim> *>  nodal_conditions;

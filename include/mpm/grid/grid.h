@@ -176,6 +176,13 @@ namespace mpm
       return partitioner->global_to_local(global_index);
     }
 
+    /** The position of a node of a locally owned cell. */
+    const Point<dim> &
+    node_position(const unsigned int node) const
+    {
+      return node_positions[node];
+    }
+
     /** The node id of vertex v of a locally owned cell. */
     unsigned int
     node_of(const unsigned int active_cell_index, const unsigned int v) const
@@ -227,6 +234,8 @@ namespace mpm
     std::shared_ptr<const Utilities::MPI::Partitioner> partitioner;
     AffineConstraints<double>                          hanging_nodes;
 
+    /** By node id; set for the nodes of locally owned cells. */
+    std::vector<Point<dim>> node_positions;
     /** Indexed by active cell index; only locally owned entries are set. */
     std::vector<CellGeometry> cells;
     bool                      all_cells_cartesian = true;

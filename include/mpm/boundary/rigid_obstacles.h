@@ -1,0 +1,162 @@
+#ifndef mpm_boundary_rigid_obstacles_h
+#define mpm_boundary_rigid_obstacles_h
+
+#include <deal.II/base/function_parser.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/tensor.h>
+
+#include <mpm/base/shape.h>
+#include <mpm/boundary/nodal_condition.h>
+#include <mpm/grid/grid.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace mpm
+{
+  using namespace dealii;
+
+  /**
+   * Rigid obstacles inside the grid, in the explicit schemes: a footing, a
+   * blade, a penetrometer or a ram. Each is a shape (box, disk, polygon;
+   * box, sphere, cylinder in 3D) that stays put or moves by a prescribed
+   * displacement u(t), with Coulomb friction against the material.
+   *
+   * An obstacle acts on the grid nodes on or inside it at the end of the
+   * step (signed distance <= 0 at x - u(t + dt)) that carry material: on
+   * the node's velocity relative to the obstacle's, (u(t + dt) - u(t)) /
+   * dt, with the one Coulomb law of the walls (CoulombContact) and the
+   * obstacle's outward normal at the node. The material presses the
+   * obstacle, slides along it or leaves it; it never enters it further
+   * than the grid can see, a fraction of a cell.
+   *
+   * The motion is given as a displacement, not a velocity: the position is
+   * then exact at every step and needs no state, so a continued run
+   * repeats an uninterrupted one. A constant velocity V is u = V t.
+   */
+  template <int dim>
+  class RigidObstacles : public NodalCondition<dim>
+  {
+  public:
+    /** `Obstacles/<name>` for each name. */
+    static void
+    declare_parameters(ParameterHandler &              prm,
+                       const std::vector<std::string> &names);
+
+    /** Parse `Obstacles` (the handler is at top level). */
+    RigidObstacles(ParameterHandler &              prm,
+                   const std::vector<std::string> &names,
+                   const Grid<dim> &               grid);
+
+    bool
+    empty() const
+    {
+      return obstacles.empty();
+    }
+
+    /** Check that each obstacle starts within a cell of the grid. */
+    void
+    setup() override;
+
+    bool
+    has_unilateral_nodes() const override
+    {
+      return false;
+    }
+
+    bool
+    acts_on(const unsigned int node) const override;
+
+    /** Remove motion into the obstacles, relative to theirs. */
+    void
+    constrain_velocity(const unsigned int node,
+                       double *           velocity) const override;
+
+    /** Place the obstacles at t + dt, with their velocity over the step. */
+    void
+    begin_explicit_solve(const double time, const double dt) const override;
+
+    void
+    constrain_explicit(const unsigned int node,
+                       const double       mass,
+                       double *           velocity,
+                       double *           acceleration,
+                       const double       dt,
+                       const double       time) const override;
+
+    /** The implicit schemes refuse obstacles before they get here. */
+    bool
+    add_constraints(const unsigned int,
+                    const std::array<types::global_dof_index, dim> &,
+                    const bool,
+                    AffineConstraints<double> &) const override
+    {
+      return false;
+    }
+
+    const Tensor<1, dim> *
+    unilateral_normal(const unsigned int) const override
+    {
+      return nullptr;
+    }
+
+    /**
+     * Per obstacle: `<name>_force_x`, `_y` (, `_z`), the total force of
+     * the material on it, then `<name>_normal_force` and
+     * `<name>_tangential_force`, the sums over its nodes of the normal and
+     * tangential force magnitudes.
+     */
+    std::vector<std::string>
+    force_names() const override;
+
+    std::vector<double>
+    forces() const override;
+
+    /**
+     * `<name>_forces_<step>.csv` per obstacle: each node it acted on, its
+     * position, normal and tangential force. Collective; rank 0 writes.
+     */
+    void
+    write_tractions(const std::string &directory,
+                    const unsigned int step) const override;
+
+  private:
+    struct Obstacle
+    {
+      std::string                        name;
+      std::unique_ptr<Shape<dim>>        shape;
+      std::unique_ptr<FunctionParser<1>> displacement;
+      double                             friction;
+
+      Tensor<1, dim>
+      displacement_at(const double t) const;
+    };
+
+    /** One obstacle at one node, as measured by the last nodal solve. */
+    struct Reaction
+    {
+      unsigned int   node;
+      unsigned int   obstacle;
+      double         normal = 0.;
+      Tensor<1, dim> tangential;
+      Tensor<1, dim> force;
+    };
+
+    /** Signed distance of a node to obstacle k in its current place. */
+    double
+    distance(const unsigned int k, const unsigned int node) const;
+
+    const Grid<dim>       &grid;
+    std::vector<Obstacle> obstacles;
+
+    /** Per obstacle, set by begin_explicit_solve(). */
+    mutable std::vector<Tensor<1, dim>> offsets;
+    mutable std::vector<Tensor<1, dim>> velocities;
+    mutable std::vector<Reaction>       reactions;
+
+    boost::signals2::scoped_connection grid_changed;
+  };
+} // namespace mpm
+
+#endif
