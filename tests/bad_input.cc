@@ -173,6 +173,13 @@ main(int argc, char **argv)
                  "Obstacles/Names=ram",
                  "Obstacles/ram/Lower corner=0.1, 0.1",
                  "Obstacles/ram/Upper corner=0.2, 0.2"}));
+  run_case("outflow boundary that does not exist",
+           with({"Boundary conditions/Outflow boundaries=orifice"}));
+  run_case("a wall's end time that is not a number",
+           with({"Boundary conditions/Fixed boundaries=bottom until soon"}));
+  run_case("a wall that ends, with the quasi-static scheme",
+           with({"Time stepping/Scheme=quasi-static",
+                 "Boundary conditions/Fixed boundaries=bottom until 1"}));
   run_case("both a total force and a traction",
            with({"Time stepping/Scheme=quasi-static",
                  "Loads/Total force=0, -1",

@@ -133,8 +133,6 @@ namespace mpm
   void
   GridTransfer<dim>::compute_nodal_acceleration(const double dt)
   {
-    for (const NodalCondition<dim> *condition : conditions)
-      condition->begin_explicit_solve(time, dt);
     for (const unsigned int node : nodes.nodes_to_solve())
       {
         double *     v        = nodes.values_of(node);
@@ -163,6 +161,16 @@ namespace mpm
             velocity[d] = end;
           }
       }
+  }
+
+
+
+  template <int dim>
+  void
+  GridTransfer<dim>::begin_step(const double dt)
+  {
+    for (const NodalCondition<dim> *condition : conditions)
+      condition->begin_explicit_solve(time, dt);
   }
 
 

@@ -2,6 +2,7 @@
 
 #include <mpm/boundary/dirichlet_conditions.h>
 #include <mpm/base/input_error.h>
+#include <mpm/base/parse.h>
 
 #include <algorithm>
 #include <map>
@@ -17,12 +18,16 @@ namespace mpm
                       "",
                       Patterns::List(Patterns::Anything()),
                       "Named boundaries (see Grid/Boundary names) whose "
-                      "nodes have zero velocity.");
+                      "nodes have zero velocity. 'name until t' ends the "
+                      "wall at time t (explicit scheme), e.g. an orifice "
+                      "that opens.");
     prm.declare_entry("Slip boundaries",
                       "",
                       Patterns::List(Patterns::Anything()),
                       "Named boundaries whose nodes have zero normal "
-                      "velocity and slide freely along the boundary.");
+                      "velocity and slide freely along the boundary. "
+                      "'name until t' ends the wall at time t (explicit "
+                      "scheme).");
     prm.declare_entry("Contact boundaries",
                       "",
                       Patterns::List(Patterns::Anything()),
@@ -44,17 +49,25 @@ namespace mpm
     : grid(grid)
   {
     prm.enter_subsection("Boundary conditions");
-    fixed_names = Utilities::split_string_list(prm.get("Fixed boundaries"));
-    slip_names  = Utilities::split_string_list(prm.get("Slip boundaries"));
+    const auto read = [&](const std::string &               entry,
+                          std::vector<std::string> &        names,
+                          std::vector<types::boundary_id> &ids) {
+      for (const std::string &item :
+           Utilities::split_string_list(prm.get(entry)))
+        {
+          const std::string path = "Boundary conditions/" + entry;
+          const auto [name, until] = split_until(item, path);
+          names.push_back(name);
+          ids.push_back(grid.boundary_id(name, path));
+          if (until < std::numeric_limits<double>::infinity())
+            end_times[ids.back()] = until;
+        }
+    };
+    read("Fixed boundaries", fixed_names, fixed_ids);
+    read("Slip boundaries", slip_names, slip_ids);
     contact_names =
       Utilities::split_string_list(prm.get("Contact boundaries"));
     prm.leave_subsection();
-    for (const auto &name : fixed_names)
-      fixed_ids.push_back(
-        grid.boundary_id(name, "Boundary conditions/Fixed boundaries"));
-    for (const auto &name : slip_names)
-      slip_ids.push_back(
-        grid.boundary_id(name, "Boundary conditions/Slip boundaries"));
     for (const auto &name : contact_names)
       contact_ids.push_back(
         grid.boundary_id(name, "Boundary conditions/Contact boundaries"));
@@ -65,7 +78,7 @@ namespace mpm
 
   template <int dim>
   void
-  DirichletConditions<dim>::setup()
+  DirichletConditions<dim>::find_nodes() const
   {
     const DoFHandler<dim> &dof_handler = grid.node_numbering();
     const auto &           tria        = grid.get_triangulation();
@@ -122,7 +135,10 @@ namespace mpm
               continue;
             const auto               face = cell->face(f);
             const types::boundary_id id   = face->boundary_id();
-            const bool               fixed =
+            const auto               ends = end_times.find(id);
+            if (ends != end_times.end() && !(found_at < ends->second))
+              continue;
+            const bool fixed =
               std::find(fixed_ids.begin(), fixed_ids.end(), id) !=
               fixed_ids.end();
             const bool slip =
@@ -199,6 +215,22 @@ namespace mpm
                        "plane, tilt the gravity instead (see "
                        "prm/rolling_disk.prm).");
   }
+
+
+  template <int dim>
+  void
+  DirichletConditions<dim>::begin_explicit_solve(const double time,
+                                                 const double) const
+  {
+    for (const auto &[id, until] : end_times)
+      if ((found_at < until) != (time < until))
+        {
+          found_at = time;
+          find_nodes();
+          return;
+        }
+  }
+
 
 
   template <int dim>

@@ -1,6 +1,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <mpm/base/input_error.h>
+#include <mpm/base/parse.h>
 #include <mpm/boundary/coulomb_contact.h>
 #include <mpm/boundary/friction_walls.h>
 
@@ -29,7 +30,7 @@ namespace mpm
       "one-sided wall, mu = inf one on which the material cannot slide. "
       "Explicit scheme only. The forces on each wall go into the time "
       "series, and its tractions into <name>_tractions_<step>.csv at each "
-      "output time.");
+      "output time. 'name: mu until t' ends the wall at time t.");
     prm.leave_subsection();
   }
 
@@ -46,13 +47,14 @@ namespace mpm
     std::vector<std::string> other_walls;
     for (const char *other :
          {"Fixed boundaries", "Slip boundaries", "Contact boundaries"})
-      for (const std::string &name :
+      for (const std::string &item :
            Utilities::split_string_list(prm.get(other)))
-        other_walls.push_back(name);
+        other_walls.push_back(split_until(item, other).first);
     prm.leave_subsection();
 
-    for (const std::string &item : Utilities::split_string_list(text, ','))
+    for (const std::string &listed : Utilities::split_string_list(text, ','))
       {
+        const auto [item, until] = split_until(listed, entry);
         const std::vector<std::string> parts =
           Utilities::split_string_list(item, ':');
         if (parts.size() != 2 || parts[0].empty() || parts[1].empty())
@@ -60,7 +62,8 @@ namespace mpm
                            "' must be 'boundary name: friction "
                            "coefficient', for example 'floor: 0.3'.");
         Wall wall;
-        wall.name = parts[0];
+        wall.name  = parts[0];
+        wall.until = until;
         try
           {
             std::size_t used = 0;
@@ -185,6 +188,8 @@ namespace mpm
     for (unsigned int c = first_contact[node]; c < first_contact[node + 1];
          ++c)
       {
+        if (!(solve_time < walls[contacts[c].wall].until))
+          continue;
         const Tensor<1, dim> &n   = contacts[c].outward;
         double                v_n = 0.;
         for (unsigned int d = 0; d < dim; ++d)
@@ -199,8 +204,10 @@ namespace mpm
 
   template <int dim>
   void
-  FrictionWalls<dim>::begin_explicit_solve(const double, const double) const
+  FrictionWalls<dim>::begin_explicit_solve(const double time,
+                                           const double) const
   {
+    solve_time = time;
     std::fill(reactions.begin(), reactions.end(), Reaction());
   }
 
@@ -213,11 +220,13 @@ namespace mpm
                                          double *           velocity,
                                          double *           acceleration,
                                          const double       dt,
-                                         const double) const
+                                         const double       time) const
   {
     for (unsigned int c = first_contact[node]; c < first_contact[node + 1];
          ++c)
       {
+        if (!(time < walls[contacts[c].wall].until))
+          continue;
         // Where the node would end the step without this wall.
         Tensor<1, dim> trial;
         for (unsigned int d = 0; d < dim; ++d)

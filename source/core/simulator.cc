@@ -41,6 +41,7 @@ namespace mpm
     Grid<dim>::declare_parameters(prm);
     DirichletConditions<dim>::declare_parameters(prm);
     FrictionWalls<dim>::declare_parameters(prm);
+    MaterialPoints<dim>::declare_parameters(prm);
     PointLoads<dim>::declare_parameters(prm);
     TimeScheme<dim>::declare_parameters(prm);
     ExplicitScheme<dim>::declare_parameters(prm);
@@ -139,6 +140,10 @@ namespace mpm
                        "stepping/Scheme = explicit use Fixed, Slip or "
                        "Friction boundaries.");
     friction_walls = std::make_unique<FrictionWalls<dim>>(prm, *grid);
+    if ((dirichlet->has_end_times() || friction_walls->has_end_times()) &&
+        scheme_name != "explicit")
+      throw InputError("Boundary conditions: a wall that ends ('name until "
+                       "t') needs Time stepping/Scheme = explicit.");
     if (!friction_walls->empty() && scheme_name != "explicit")
       throw InputError("Boundary conditions/Friction boundaries act in the "
                        "explicit scheme (Time stepping/Scheme = explicit); "
@@ -187,6 +192,7 @@ namespace mpm
     points = std::make_unique<MaterialPoints<dim>>(*grid,
                                                    internal_names,
                                                    scheme_name != "explicit");
+    points->parse_outflow(prm);
     seeder = std::make_unique<PointSeeder<dim>>(*grid);
     seeder->seed(bodies, materials, *points);
     seeder->apply_geostatic_stress(bodies, materials, gravity, *points);

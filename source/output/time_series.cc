@@ -97,6 +97,8 @@ namespace mpm
             for (unsigned int d = 0; d < dim; ++d)
               file << ",point" << k << "_v" << axes[d];
           }
+        if (points.has_outflow())
+          file << ",removed_mass,removed_points";
         for (const NodalCondition<dim> *condition : conditions)
           for (const std::string &name : condition->force_names())
             file << ',' << name;
@@ -192,6 +194,10 @@ namespace mpm
     for (unsigned int d = 0; d < dim; ++d)
       result.momentum[d] = sums[4 + d];
 
+    const double removed_mass =
+      points.has_outflow() ? points.removed_mass() : 0.;
+    const types::particle_index removed_points =
+      points.has_outflow() ? points.removed_points() : 0;
     std::vector<double> forces;
     for (const NodalCondition<dim> *condition : conditions)
       for (const double force : condition->forces())
@@ -212,6 +218,8 @@ namespace mpm
           file << ',' << -largest[1 + 2 * d] << ',' << largest[2 + 2 * d];
         for (unsigned int k = tracked; k < sums.size(); ++k)
           file << ',' << sums[k];
+        if (points.has_outflow())
+          file << ',' << removed_mass << ',' << removed_points;
         for (const double force : forces)
           file << ',' << force;
         file << '\n';

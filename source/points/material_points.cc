@@ -51,7 +51,8 @@ namespace mpm
     const Grid<dim> &               grid,
     const std::vector<std::string> &internal_variable_names,
     const bool                      implicit_fields)
-    : triangulation(grid.get_triangulation())
+    : grid(grid)
+    , triangulation(grid.get_triangulation())
     , mapping(grid.get_mapping())
     , particle_handler(triangulation,
                        mapping,
@@ -62,8 +63,14 @@ namespace mpm
   {
     particle_handler.signals.particle_lost.connect(
       [this](const typename Particles::ParticleIterator<dim> &particle,
-             const typename Triangulation<dim>::active_cell_iterator &) {
-        lost_positions.push_back(particle->get_location());
+             const typename Triangulation<dim>::active_cell_iterator &cell) {
+        if (leaves_through_outflow(cell, particle->get_location()))
+          {
+            local_removed_mass += particle->get_properties()[Layout::mass];
+            ++local_removed_points;
+          }
+        else
+          lost_positions.push_back(particle->get_location());
       });
     // Carried into the refined cells by deal.II's transfer, before anything
     // else rebuilds on the new grid.
@@ -122,6 +129,100 @@ namespace mpm
 
   template <int dim>
   void
+  MaterialPoints<dim>::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Boundary conditions");
+    prm.declare_entry("Outflow boundaries",
+                      "",
+                      Patterns::List(Patterns::Anything()),
+                      "Named boundaries through which material leaves: a "
+                      "point that crosses one is removed, and the time "
+                      "series counts the removed mass and points "
+                      "(removed_mass, removed_points). A boundary may be a "
+                      "wall until some time and an outflow after it (a "
+                      "silo's orifice). A point that leaves the grid "
+                      "anywhere else stops the run.");
+    prm.leave_subsection();
+  }
+
+
+
+  template <int dim>
+  void
+  MaterialPoints<dim>::parse_outflow(ParameterHandler &prm)
+  {
+    const std::string entry = "Boundary conditions/Outflow boundaries";
+    prm.enter_subsection("Boundary conditions");
+    const std::vector<std::string> names =
+      Utilities::split_string_list(prm.get("Outflow boundaries"));
+    prm.leave_subsection();
+    const std::vector<types::boundary_id> present =
+      triangulation.get_boundary_ids();
+    for (const std::string &name : names)
+      {
+        const types::boundary_id id = grid.boundary_id(name, entry);
+        if (std::find(present.begin(), present.end(), id) == present.end())
+          throw InputError(entry + " names '" + name +
+                           "', but no face of the grid has its boundary id " +
+                           std::to_string(id) + ".");
+        outflow_ids.push_back(id);
+      }
+  }
+
+
+
+  template <int dim>
+  bool
+  MaterialPoints<dim>::leaves_through_outflow(
+    const typename Triangulation<dim>::active_cell_iterator &cell,
+    const Point<dim> &                                       x) const
+  {
+    if (outflow_ids.empty())
+      return false;
+    for (const unsigned int f : cell->face_indices())
+      if (cell->at_boundary(f) &&
+          std::find(outflow_ids.begin(),
+                    outflow_ids.end(),
+                    cell->face(f)->boundary_id()) != outflow_ids.end())
+        {
+          // Beyond the face's plane, on the side away from the cell.
+          const auto     face = cell->face(f);
+          Tensor<1, dim> normal;
+          if constexpr (dim == 2)
+            normal = cross_product_2d(face->vertex(1) - face->vertex(0));
+          else
+            normal = cross_product_3d(face->vertex(1) - face->vertex(0),
+                                      face->vertex(2) - face->vertex(0));
+          if (normal * (face->center() - cell->center()) < 0.)
+            normal = -normal;
+          if (normal * (x - face->center()) > 0.)
+            return true;
+        }
+    return false;
+  }
+
+
+
+  template <int dim>
+  double
+  MaterialPoints<dim>::removed_mass() const
+  {
+    return Utilities::MPI::sum(local_removed_mass, get_communicator());
+  }
+
+
+
+  template <int dim>
+  types::particle_index
+  MaterialPoints<dim>::removed_points() const
+  {
+    return Utilities::MPI::sum(local_removed_points, get_communicator());
+  }
+
+
+
+  template <int dim>
+  void
   MaterialPoints<dim>::sort()
   {
     lost_positions.clear();
@@ -160,7 +261,8 @@ namespace mpm
       particle_handler.n_locally_owned_particles();
     const unsigned int n_properties =
       particle_handler.n_properties_per_particle();
-    archive << n_points << n_properties;
+    archive << n_points << n_properties << local_removed_mass
+            << local_removed_points;
     std::vector<double> properties(n_properties);
     for (auto particle = particle_handler.begin();
          particle != particle_handler.end();
@@ -187,7 +289,8 @@ namespace mpm
   {
     std::uint64_t n_points     = 0;
     unsigned int  n_properties = 0;
-    archive >> n_points >> n_properties;
+    archive >> n_points >> n_properties >> local_removed_mass >>
+      local_removed_points;
     if (n_properties != particle_handler.n_properties_per_particle())
       throw InputError("--restart: the checkpoint's points carry " +
                        std::to_string(n_properties) +

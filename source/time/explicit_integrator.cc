@@ -45,6 +45,7 @@ namespace mpm
   ExplicitIntegrator<dim>::step(const double dt)
   {
     cell_size = grid.minimum_cell_size();
+    transfer.begin_step(dt);
     StepReport report;
     auto       timed = [this](const char *section, const auto &work) {
       TimerOutput::Scope scope(timer, section);

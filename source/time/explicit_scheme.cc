@@ -5,6 +5,7 @@
 #include <mpm/time/explicit_scheme.h>
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace mpm
@@ -160,6 +161,10 @@ namespace mpm
   double
   ExplicitScheme<dim>::stable_time_step(const Speeds &speeds) const
   {
+    // With every point gone (through an outflow boundary) nothing limits
+    // the step: the run goes to End time.
+    if (this->scene.points.n_global_points() == 0)
+      return std::numeric_limits<double>::infinity();
     const double step = cfl_number * stability_limit(speeds);
     // Every rank has the same speeds, so every rank throws.
     if (!(step > 0. && std::isfinite(step)))

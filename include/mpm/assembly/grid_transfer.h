@@ -102,6 +102,13 @@ namespace mpm
     compute_nodal_acceleration(const double dt);
 
     /**
+     * An explicit step from the time set by set_time() to it + dt begins:
+     * the nodal conditions hear of it before any nodal solve of the step.
+     */
+    void
+    begin_step(const double dt);
+
+    /**
      * a = f / m on every node with what the nodal conditions forbid
      * removed, the velocity left alone: the start of a Newmark run.
      */

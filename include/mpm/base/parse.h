@@ -8,6 +8,7 @@
 #include <mpm/base/input_error.h>
 
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -48,6 +49,33 @@ namespace mpm
           }
       }
     return p;
+  }
+
+  /**
+   * A list item that may end in 'until t' ("orifice until 1.5"): the item
+   * before it, and t, or infinity without it. `entry` names the parameter
+   * for the message.
+   */
+  inline std::pair<std::string, double>
+  split_until(const std::string &item, const std::string &entry)
+  {
+    const std::string::size_type at = item.find(" until ");
+    if (at == std::string::npos)
+      return {item, std::numeric_limits<double>::infinity()};
+    const std::string time = Utilities::trim(item.substr(at + 7));
+    try
+      {
+        std::size_t  used = 0;
+        const double t    = std::stod(time, &used);
+        if (used != time.size())
+          throw std::invalid_argument(time);
+        return {Utilities::trim(item.substr(0, at)), t};
+      }
+    catch (const std::exception &)
+      {
+        throw InputError(entry + ": '" + item +
+                         "': the time after 'until' is not a number.");
+      }
   }
 
   /** Parse a ';'-separated list of points, e.g. "0,0; 1,0; 1,1". */

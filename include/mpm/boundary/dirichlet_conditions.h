@@ -8,6 +8,7 @@
 #include <mpm/grid/grid.h>
 
 #include <algorithm>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,10 @@ namespace mpm
    * slip wall. A node where walls of different ids meet loses each wall's
    * normal component; a node on a fixed face is fixed, and otherwise a node
    * on a contact face is a contact node.
+   *
+   * A wall named 'name until t' acts while the time is below t (explicit
+   * scheme): at the first nodal solve from t on, the nodes are found again
+   * without it.
    */
   template <int dim>
   class DirichletConditions : public NodalCondition<dim>
@@ -42,7 +47,21 @@ namespace mpm
 
     /** Find the constrained nodes of all locally relevant cells. */
     void
-    setup() override;
+    setup() override
+    {
+      find_nodes();
+    }
+
+    /** Find the nodes again if a wall has ended since the last time. */
+    void
+    begin_explicit_solve(const double time, const double dt) const override;
+
+    /** Whether some wall is given an end time ('until'). */
+    bool
+    has_end_times() const
+    {
+      return !end_times.empty();
+    }
 
     bool
     has_unilateral_nodes() const override
@@ -98,6 +117,10 @@ namespace mpm
     }
 
   private:
+    /** setup(), also when a wall ends (the nodes are a cache of time). */
+    void
+    find_nodes() const;
+
     /** The projection of constrain_velocity(). */
     void
     apply(const unsigned int node, double *vector_at_node) const
@@ -183,9 +206,14 @@ namespace mpm
     std::vector<std::string>        slip_names;
     std::vector<std::string>        contact_names;
 
+    /** The walls given 'until', and when they end. */
+    std::map<types::boundary_id, double> end_times;
+    /** The time at which the walls in force were last found. */
+    mutable double found_at = 0.;
+
     /** Per node id: index into `constraints`, or -1. */
-    std::vector<int>        constraint_of_node;
-    std::vector<Constraint> constraints;
+    mutable std::vector<int>        constraint_of_node;
+    mutable std::vector<Constraint> constraints;
 
     boost::signals2::scoped_connection grid_changed;
   };

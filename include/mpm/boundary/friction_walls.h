@@ -53,6 +53,16 @@ namespace mpm
       return walls.empty();
     }
 
+    /** Whether some wall is given an end time ('until'). */
+    bool
+    has_end_times() const
+    {
+      for (const Wall &wall : walls)
+        if (wall.until < std::numeric_limits<double>::infinity())
+          return true;
+      return false;
+    }
+
     /** Find each wall's nodes, their normals and their shares of it. */
     void
     setup() override;
@@ -130,6 +140,8 @@ namespace mpm
       std::string        name;
       types::boundary_id id;
       double             friction;
+      /** The wall acts while the time is below this. */
+      double until;
       /** Unit mean outward normal, over all ranks. */
       Tensor<1, dim> mean_normal;
     };
@@ -168,6 +180,8 @@ namespace mpm
     std::vector<Contact>      contacts;
     /** Per contact, as measured by the last nodal solve. */
     mutable std::vector<Reaction> reactions;
+    /** The start of the step of the last nodal solve. */
+    mutable double solve_time = 0.;
 
     boost::signals2::scoped_connection grid_changed;
   };

@@ -53,7 +53,7 @@ namespace mpm
     virtual void
     constrain_velocity(const unsigned int node, double *velocity) const = 0;
 
-    /** A nodal solve of the explicit step from `time` to time + dt begins. */
+    /** An explicit step from `time` to time + dt begins. */
     virtual void
     begin_explicit_solve(const double, const double) const
     {}

@@ -7,6 +7,8 @@
 
 #include <boost/serialization/split_member.hpp>
 
+#include <deal.II/base/parameter_handler.h>
+
 #include <mpm/grid/grid.h>
 #include <mpm/points/point_layout.h>
 
@@ -39,11 +41,39 @@ namespace mpm
                    const std::vector<std::string> &internal_variable_names,
                    const bool                      implicit_fields);
 
+    /** `Boundary conditions/Outflow boundaries`. */
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    /**
+     * Read the outflow boundaries (the handler is at top level): points
+     * that leave the grid through them are removed, and counted, instead
+     * of stopping the run.
+     */
+    void
+    parse_outflow(ParameterHandler &prm);
+
+    /** Whether the scene has outflow boundaries. */
+    bool
+    has_outflow() const
+    {
+      return !outflow_ids.empty();
+    }
+
+    /** The mass of the points removed so far, over all ranks. */
+    double
+    removed_mass() const;
+
+    /** The number of points removed so far, over all ranks. */
+    types::particle_index
+    removed_points() const;
+
     /**
      * Put every point into the cell (and onto the rank) that contains its
-     * current position. A point that leaves the grid, or moves beyond the
-     * cells next to its old one, stops the run with a RunError naming its
-     * position.
+     * current position. A point that leaves the grid through an outflow
+     * boundary is removed; one that leaves it elsewhere, or moves beyond
+     * the cells next to its old one, stops the run with a RunError naming
+     * its position.
      */
     void
     sort();
@@ -132,6 +162,13 @@ namespace mpm
     BOOST_SERIALIZATION_SPLIT_MEMBER()
 
   private:
+    /** Whether x lies beyond an outflow face of `cell`. */
+    bool
+    leaves_through_outflow(
+      const typename Triangulation<dim>::active_cell_iterator &cell,
+      const Point<dim> &                                       x) const;
+
+    const Grid<dim> &                                grid;
     const parallel::distributed::Triangulation<dim> &triangulation;
     const Mapping<dim> &                             mapping;
     Particles::ParticleHandler<dim>                  particle_handler;
@@ -140,6 +177,11 @@ namespace mpm
 
     /** Filled by the particle_lost signal during a sort. */
     std::vector<Point<dim>> lost_positions;
+
+    std::vector<types::boundary_id> outflow_ids;
+    /** What left through the outflow boundaries from this rank. */
+    double                          local_removed_mass   = 0.;
+    types::particle_index           local_removed_points = 0;
 
     /** Between Grid::before_change and Grid::changed. */
     bool                                 grid_changing = false;
