@@ -7,8 +7,8 @@
 // it), and one continues from checkpoint.old/, as after a run killed
 // between the renames that swap a new checkpoint in. The scenes cover the
 // explicit scheme, the quasi-static scheme,
-// Newmark with walls, and (on one rank) the meshfree methods with their
-// node cloud. Two last cases continue runs with other step sizes, as after
+// Newmark with walls, a wall that ends and an outflow boundary, and (on
+// one rank) the meshfree methods with their node cloud. Two last cases continue runs with other step sizes, as after
 // a run that went unstable. Bad input for checkpoints is in bad_input.cc.
 
 #include <deal.II/base/mpi.h>
@@ -245,6 +245,23 @@ main(int argc, char **argv)
                 {},
                 "Time stepping/Load steps=5",
                 {0.1, 0.1, 0.2, 0.2, 0.2, 0.2});
+
+  // The floor ends after the second step (the third part starts without
+  // it), and the block leaves through the outflow boundary from about
+  // 0.05 s on, so the last part starts with mass removed: the parts must
+  // find the walls in force at their time and carry the removed mass on.
+  // A fixed step, so that the third part's End time is on the steps.
+  compare("opening floor, a wall that ends and an outflow",
+          mpm_tests::source_file("scenes/opening_floor.prm"),
+          {"Boundary conditions/Fixed boundaries=bottom until 0.0006",
+           "Time stepping/End time=0.3",
+           "Time stepping/Time step=4e-4",
+           "Output/Interval=0.05"},
+          {stop_after_one_step,
+           stop_after_one_step,
+           {"Time stepping/End time=0.1",
+            "Checkpoint/Wall time interval=1e-9"},
+           to_the_end});
 
   // The meshfree methods run on one rank.
   if (serial)

@@ -11,9 +11,11 @@
 // - the block is pushed: it ends moving along x at no less than the ram's
 //   speed and no more than twice it (what an elastic body takes from a
 //   rigid wall that moves, the bound for any material);
-// - Coulomb at the ram's nodes: at each output time every node of the
+// - Coulomb at the ram's nodes: at every step the sums over its nodes
+//   meet sum |T| <= mu sum N, and at each output time every node of the
 //   force file has |T| <= mu N, N >= 0.
-// The same scene with the ram standing still leaves the block at rest.
+// The same scene with the ram standing still, away from the block, leaves
+// the block at rest.
 
 #include <deal.II/base/mpi.h>
 
@@ -41,6 +43,7 @@ main(int argc, char **argv)
   const double M       = csv["mass"][0];
   double       impulse = 0., balance = 0.;
   double       penetration = -std::numeric_limits<double>::max();
+  double       bound       = -std::numeric_limits<double>::max();
   double       pushing = 0.;
   for (unsigned int n = 1; n < csv["time"].size(); ++n)
     {
@@ -49,6 +52,10 @@ main(int argc, char **argv)
       penetration =
         std::max(penetration, 0.5 + V * csv["time"][n] - csv["min_x"][n]);
       pushing = std::max(pushing, -csv["ram_force_x"][n]);
+      // Sums over the ram's nodes of |T| and N: each node meets Coulomb.
+      bound = std::max(bound,
+                       csv["ram_tangential_force"][n] -
+                         mu * csv["ram_normal_force"][n]);
     }
   const double v_end = csv["momentum_x"].back() / M;
   deallog << "largest push " << pushing << " N/m; end velocity " << v_end
@@ -56,6 +63,9 @@ main(int argc, char **argv)
           << std::endl;
   mpm_tests::check("the block's momentum is the ram's impulse to 1e-9 M V",
                    pushing > 0. && balance < 1e-9 * M * V);
+  mpm_tests::check("at every step the ram's nodes meet Coulomb: sum |T| <= "
+                   "mu sum N, to 1e-9 of the largest push",
+                   bound < 1e-9 * pushing);
   mpm_tests::check("the block stays ahead of the ram's face, less a cell",
                    penetration < h);
   mpm_tests::check("the block ends between the ram's speed and twice it",
@@ -88,7 +98,7 @@ main(int argc, char **argv)
   auto alone = mpm_tests::run_scene("scenes/pushed_block.prm",
                                     "output-alone",
                                     {"Obstacles/ram/Displacement=0; 0"});
-  mpm_tests::check("with the ram standing still the block stays at rest",
+  mpm_tests::check("a standing ram away from the block leaves it at rest",
                    std::abs(alone["momentum_x"].back()) < 1e-12 * M * V);
   return 0;
 }

@@ -149,14 +149,7 @@ namespace mpm
             if (!fixed && !slip && !contact)
               continue;
 
-            Tensor<1, dim> normal;
-            if constexpr (dim == 2)
-              normal = cross_product_2d(face->vertex(1) - face->vertex(0));
-            else
-              normal = cross_product_3d(face->vertex(1) - face->vertex(0),
-                                        face->vertex(2) - face->vertex(0));
-            if (normal * (face->center() - cell->center()) < 0.)
-              normal = -normal;
+            const Tensor<1, dim> normal = Grid<dim>::face_normal(cell, f);
 
             for (const unsigned int v : face->vertex_indices())
               {

@@ -1,5 +1,6 @@
 #include <deal.II/base/mpi.h>
 
+#include <mpm/base/gathered_csv.h>
 #include <mpm/base/input_error.h>
 #include <mpm/base/parse.h>
 #include <mpm/boundary/coulomb_contact.h>
@@ -64,23 +65,9 @@ namespace mpm
         Wall wall;
         wall.name  = parts[0];
         wall.until = until;
-        try
-          {
-            std::size_t used = 0;
-            wall.friction    = std::stod(parts[1], &used);
-            if (used != parts[1].size())
-              throw std::invalid_argument(parts[1]);
-          }
-        catch (const std::exception &)
-          {
-            throw InputError(entry + ": the friction coefficient '" +
-                             parts[1] + "' of '" + wall.name +
-                             "' is not a number.");
-          }
-        if (!(wall.friction >= 0.))
-          throw InputError(entry + ": the friction coefficient of '" +
-                           wall.name + "' is " + parts[1] +
-                           "; it must be 0 or more (inf: no sliding).");
+        wall.friction = parse_friction_coefficient(
+          parts[1],
+          entry + ": the friction coefficient of '" + wall.name + "'");
         for (const Wall &earlier : walls)
           if (earlier.name == wall.name)
             throw InputError(entry + " names '" + wall.name + "' twice.");
@@ -132,15 +119,8 @@ namespace mpm
               });
             if (wall == walls.end())
               continue;
-            const unsigned int w = wall - walls.begin();
-            Tensor<1, dim>     normal;
-            if constexpr (dim == 2)
-              normal = cross_product_2d(face->vertex(1) - face->vertex(0));
-            else
-              normal = cross_product_3d(face->vertex(1) - face->vertex(0),
-                                        face->vertex(2) - face->vertex(0));
-            if (normal * (face->center() - cell->center()) < 0.)
-              normal = -normal;
+            const unsigned int   w      = wall - walls.begin();
+            const Tensor<1, dim> normal = Grid<dim>::face_normal(cell, f);
             if (cell->is_locally_owned())
               normal_sums[w] += normal;
             const double share = face->measure() / face->n_vertices();
@@ -160,6 +140,11 @@ namespace mpm
       {
         const Tensor<1, dim> sum =
           Utilities::MPI::sum(normal_sums[w], tria.get_communicator());
+        if (!(sum.norm() > 1e-12 * grid.minimum_cell_size()))
+          throw InputError("Boundary conditions/Friction boundaries: the "
+                           "faces of '" + walls[w].name + "' have no mean "
+                           "direction (a closed boundary?); give its parts "
+                           "names of their own.");
         walls[w].mean_normal = sum / sum.norm();
       }
 
@@ -345,28 +330,15 @@ namespace mpm
                                contact.area;
                 rows.push_back(row);
               }
-        const auto gathered = Utilities::MPI::gather(comm, rows, 0);
-        if (Utilities::MPI::this_mpi_process(comm) != 0)
-          continue;
-        std::vector<std::array<double, dim + 2>> all;
-        for (const auto &part : gathered)
-          all.insert(all.end(), part.begin(), part.end());
-        std::sort(all.begin(), all.end());
-        std::ostringstream name;
-        name << directory << "/" << walls[w].name << "_tractions_"
-             << std::setw(6) << std::setfill('0') << step << ".csv";
-        std::ofstream file(name.str());
-        const char *  axes = "xyz";
+        const char *axes   = "xyz";
+        std::string header;
         for (unsigned int d = 0; d < dim; ++d)
-          file << axes[d] << ',';
-        file << "normal_traction,tangential_traction\n"
-             << std::setprecision(12);
-        for (const auto &row : all)
-          for (unsigned int k = 0; k < dim + 2; ++k)
-            file << row[k] << (k + 1 < dim + 2 ? ',' : '\n');
-        if (!file)
-          throw RunError("Cannot write the wall tractions '" + name.str() +
-                         "'.");
+          header += std::string(1, axes[d]) + ',';
+        write_gathered_csv(
+          comm,
+          rows,
+          step_csv_name(directory, walls[w].name + "_tractions", step),
+          header + "normal_traction,tangential_traction");
       }
   }
 

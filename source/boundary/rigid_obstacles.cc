@@ -1,5 +1,6 @@
 #include <deal.II/base/mpi.h>
 
+#include <mpm/base/gathered_csv.h>
 #include <mpm/base/input_error.h>
 #include <mpm/base/parse.h>
 #include <mpm/base/shape_parameters.h>
@@ -74,22 +75,9 @@ namespace mpm
         obstacle.displacement = parse_function<1>(
           expressions, "t", Point<1>(), path + "/Displacement");
 
-        const std::string friction = prm.get("Friction coefficient");
-        try
-          {
-            std::size_t used  = 0;
-            obstacle.friction = std::stod(friction, &used);
-            if (used != friction.size())
-              throw std::invalid_argument(friction);
-          }
-        catch (const std::exception &)
-          {
-            throw InputError(path + "/Friction coefficient = '" + friction +
-                             "' is not a number.");
-          }
-        if (!(obstacle.friction >= 0.))
-          throw InputError(path + "/Friction coefficient = " + friction +
-                           " must be 0 or more (inf: no sliding).");
+        obstacle.friction =
+          parse_friction_coefficient(prm.get("Friction coefficient"),
+                                     path + "/Friction coefficient");
         prm.leave_subsection();
         obstacles.push_back(std::move(obstacle));
       }
@@ -124,7 +112,9 @@ namespace mpm
       {
         const Tensor<1, dim> u0   = obstacle.displacement_at(0.);
         bool                 near = false;
-        for (unsigned int node = 0; node < grid.n_nodes() && !near; ++node)
+        const unsigned int   n_owned =
+          grid.node_partitioner()->locally_owned_size();
+        for (unsigned int node = 0; node < n_owned && !near; ++node)
           near = obstacle.shape->signed_distance(grid.node_position(node) -
                                                  u0) <= h;
         if (!Utilities::MPI::logical_or(near, grid.get_communicator()))
@@ -133,6 +123,9 @@ namespace mpm
                            "(no grid node within a cell of it); check its "
                            "shape against Grid/Arguments.");
       }
+    // Where the obstacles stand before the first step (the first output).
+    for (unsigned int k = 0; k < obstacles.size(); ++k)
+      offsets[k] = obstacles[k].displacement_at(0.);
     reactions.clear();
   }
 
@@ -145,6 +138,30 @@ namespace mpm
   {
     return obstacles[k].shape->signed_distance(grid.node_position(node) -
                                                offsets[k]);
+  }
+
+
+
+  template <int dim>
+  Tensor<1, dim>
+  RigidObstacles<dim>::contact_normal(const unsigned int    k,
+                                      const unsigned int    node,
+                                      const Tensor<1, dim> &relative) const
+  {
+    // A node on an edge or a corner, or on a face that lies on a grid line
+    // through another face, is as near to several faces: take the face
+    // the material comes through, seen a little way back along its
+    // motion relative to the obstacle.
+    const Point<dim> x = grid.node_position(node) - offsets[k];
+    const double     speed = relative.norm();
+    if (speed > 0.)
+      {
+        const Point<dim> behind =
+          x - (1e-3 * grid.minimum_cell_size() / speed) * relative;
+        if (obstacles[k].shape->signed_distance(behind) > 0.)
+          return obstacles[k].shape->outward_normal(behind);
+      }
+    return obstacles[k].shape->outward_normal(x);
   }
 
 
@@ -185,11 +202,11 @@ namespace mpm
     for (unsigned int k = 0; k < obstacles.size(); ++k)
       if (distance(k, node) <= 0.)
         {
-          const Point<dim> x = grid.node_position(node) - offsets[k];
-          const Tensor<1, dim> into = -obstacles[k].shape->outward_normal(x);
-          double               v_n  = 0.;
+          Tensor<1, dim> relative;
           for (unsigned int d = 0; d < dim; ++d)
-            v_n += (velocity[d] - velocities[k][d]) * into[d];
+            relative[d] = velocity[d] - velocities[k][d];
+          const Tensor<1, dim> into = -contact_normal(k, node, relative);
+          const double         v_n  = relative * into;
           if (v_n > 0.)
             for (unsigned int d = 0; d < dim; ++d)
               velocity[d] -= v_n * into[d];
@@ -210,14 +227,13 @@ namespace mpm
     for (unsigned int k = 0; k < obstacles.size(); ++k)
       if (distance(k, node) <= 0.)
         {
-          const Point<dim> x = grid.node_position(node) - offsets[k];
           // Relative to the obstacle, where the node would end the step.
           Tensor<1, dim> relative;
           for (unsigned int d = 0; d < dim; ++d)
             relative[d] =
               velocity[d] + dt * acceleration[d] - velocities[k][d];
           const CoulombContact<dim> law(relative,
-                                        -obstacles[k].shape->outward_normal(x),
+                                        -contact_normal(k, node, relative),
                                         obstacles[k].friction,
                                         mass,
                                         dt);
@@ -303,27 +319,15 @@ namespace mpm
               row[dim + 1] = reaction.tangential.norm();
               rows.push_back(row);
             }
-        const auto gathered = Utilities::MPI::gather(comm, rows, 0);
-        if (Utilities::MPI::this_mpi_process(comm) != 0)
-          continue;
-        std::vector<std::array<double, dim + 2>> all;
-        for (const auto &part : gathered)
-          all.insert(all.end(), part.begin(), part.end());
-        std::sort(all.begin(), all.end());
-        std::ostringstream name;
-        name << directory << "/" << obstacles[k].name << "_forces_"
-             << std::setw(6) << std::setfill('0') << step << ".csv";
-        std::ofstream file(name.str());
-        const char *  axes = "xyz";
+        const char *axes   = "xyz";
+        std::string header;
         for (unsigned int d = 0; d < dim; ++d)
-          file << axes[d] << ',';
-        file << "normal_force,tangential_force\n" << std::setprecision(12);
-        for (const auto &row : all)
-          for (unsigned int c = 0; c < dim + 2; ++c)
-            file << row[c] << (c + 1 < dim + 2 ? ',' : '\n');
-        if (!file)
-          throw RunError("Cannot write the obstacle forces '" + name.str() +
-                         "'.");
+          header += std::string(1, axes[d]) + ',';
+        write_gathered_csv(
+          comm,
+          rows,
+          step_csv_name(directory, obstacles[k].name + "_forces", step),
+          header + "normal_force,tangential_force");
       }
   }
 

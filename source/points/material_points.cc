@@ -186,16 +186,8 @@ namespace mpm
                     cell->face(f)->boundary_id()) != outflow_ids.end())
         {
           // Beyond the face's plane, on the side away from the cell.
-          const auto     face = cell->face(f);
-          Tensor<1, dim> normal;
-          if constexpr (dim == 2)
-            normal = cross_product_2d(face->vertex(1) - face->vertex(0));
-          else
-            normal = cross_product_3d(face->vertex(1) - face->vertex(0),
-                                      face->vertex(2) - face->vertex(0));
-          if (normal * (face->center() - cell->center()) < 0.)
-            normal = -normal;
-          if (normal * (x - face->center()) > 0.)
+          if (Grid<dim>::face_normal(cell, f) * (x - cell->face(f)->center()) >
+              0.)
             return true;
         }
     return false;

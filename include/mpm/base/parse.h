@@ -78,6 +78,31 @@ namespace mpm
       }
   }
 
+  /**
+   * A friction coefficient: a number, 0 or more, or inf (no sliding).
+   * `what` names it for the message.
+   */
+  inline double
+  parse_friction_coefficient(const std::string &text, const std::string &what)
+  {
+    double friction = 0.;
+    try
+      {
+        std::size_t used = 0;
+        friction         = std::stod(text, &used);
+        if (used != text.size())
+          throw std::invalid_argument(text);
+      }
+    catch (const std::exception &)
+      {
+        throw InputError(what + " = '" + text + "' is not a number.");
+      }
+    if (!(friction >= 0.))
+      throw InputError(what + " = " + text +
+                       " must be 0 or more (inf: no sliding).");
+    return friction;
+  }
+
   /** Parse a ';'-separated list of points, e.g. "0,0; 1,0; 1,1". */
   template <int dim>
   std::vector<Point<dim>>

@@ -23,13 +23,12 @@ namespace mpm
    * box, sphere, cylinder in 3D) that stays put or moves by a prescribed
    * displacement u(t), with Coulomb friction against the material.
    *
-   * An obstacle acts on the grid nodes on or inside it at the end of the
-   * step (signed distance <= 0 at x - u(t + dt)) that carry material: on
+   * An obstacle acts in the nodal solve on the grid nodes on or inside it
+   * at the end of the step (signed distance <= 0 at x - u(t + dt)): on
    * the node's velocity relative to the obstacle's, (u(t + dt) - u(t)) /
    * dt, with the one Coulomb law of the walls (CoulombContact) and the
-   * obstacle's outward normal at the node. The material presses the
-   * obstacle, slides along it or leaves it; it never enters it further
-   * than the grid can see, a fraction of a cell.
+   * outward normal of the face the node comes through (contact_normal()).
+   * The material presses the obstacle, slides along it or leaves it.
    *
    * The motion is given as a displacement, not a velocity: the position is
    * then exact at every step and needs no state, so a continued run
@@ -142,6 +141,15 @@ namespace mpm
       Tensor<1, dim> tangential;
       Tensor<1, dim> force;
     };
+
+    /**
+     * The outward normal of obstacle k that a node meets, moving with
+     * `relative` velocity to it.
+     */
+    Tensor<1, dim>
+    contact_normal(const unsigned int    k,
+                   const unsigned int    node,
+                   const Tensor<1, dim> &relative) const;
 
     /** Signed distance of a node to obstacle k in its current place. */
     double

@@ -183,6 +183,27 @@ namespace mpm
       return node_positions[node];
     }
 
+    /**
+     * The outward normal of face f of a cell, as long as the face is large
+     * (its length in 2D, the area of the parallelogram of its first two
+     * edges in 3D), so that sums over faces weigh them by size.
+     */
+    template <class CellIterator>
+    static Tensor<1, dim>
+    face_normal(const CellIterator &cell, const unsigned int f)
+    {
+      const auto     face = cell->face(f);
+      Tensor<1, dim> normal;
+      if constexpr (dim == 2)
+        normal = cross_product_2d(face->vertex(1) - face->vertex(0));
+      else
+        normal = cross_product_3d(face->vertex(1) - face->vertex(0),
+                                  face->vertex(2) - face->vertex(0));
+      if (normal * (face->center() - cell->center()) < 0.)
+        normal = -normal;
+      return normal;
+    }
+
     /** The node id of vertex v of a locally owned cell. */
     unsigned int
     node_of(const unsigned int active_cell_index, const unsigned int v) const
