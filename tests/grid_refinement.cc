@@ -120,20 +120,8 @@ test()
   point_mass     = Utilities::MPI::sum(point_mass, comm);
   point_momentum = Utilities::MPI::sum(point_momentum, comm);
   transfer.project_mass_momentum(false);
-  using NodalLayout = typename GridNodes<dim>::NodalLayout;
-  double         grid_mass = 0.;
-  Tensor<1, dim> grid_momentum;
-  for (unsigned int node = 0;
-       node < grid.node_partitioner()->locally_owned_size();
-       ++node)
-    {
-      const double *v = nodes.values_of(node);
-      grid_mass += v[NodalLayout::mass];
-      for (unsigned int d = 0; d < dim; ++d)
-        grid_momentum[d] += v[NodalLayout::velocity + d];
-    }
-  grid_mass     = Utilities::MPI::sum(grid_mass, comm);
-  grid_momentum = Utilities::MPI::sum(grid_momentum, comm);
+  const auto [grid_mass, grid_momentum] =
+    mpm_tests::grid_mass_and_momentum(grid, nodes);
   mpm_tests::check("projection to the refined grid conserves mass to 1e-13",
                    std::abs(grid_mass - point_mass) < 1e-13 * point_mass);
   mpm_tests::check("and momentum to 1e-13",

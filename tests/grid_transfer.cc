@@ -184,20 +184,8 @@ test()
                                Tensor<1, dim>());
     transfer.project_mass_momentum(false);
 
-    // Sum over owned nodes only, so that shared nodes count once.
-    using NodalLayout = typename GridNodes<dim>::NodalLayout;
-    const unsigned n_owned   = grid.node_partitioner()->locally_owned_size();
-    double         grid_mass = 0.;
-    Tensor<1, dim> grid_momentum;
-    for (unsigned int node = 0; node < n_owned; ++node)
-      {
-        const double *v = nodes.values_of(node);
-        grid_mass += v[NodalLayout::mass];
-        for (unsigned int d = 0; d < dim; ++d)
-          grid_momentum[d] += v[NodalLayout::velocity + d];
-      }
-    grid_mass     = Utilities::MPI::sum(grid_mass, comm);
-    grid_momentum = Utilities::MPI::sum(grid_momentum, comm);
+    const auto [grid_mass, grid_momentum] =
+      mpm_tests::grid_mass_and_momentum(grid, nodes);
     mpm_tests::check("P2G conserves mass to 1e-13 (relative)",
                      std::abs(grid_mass - point_mass) < 1e-13 * point_mass);
     mpm_tests::check("P2G conserves momentum to 1e-13 (relative)",
@@ -210,7 +198,8 @@ test()
     transfer.for_each_point([&](auto &particle, const Support<dim> &support) {
       returned_momentum +=
         particle->get_properties()[Layout::mass] *
-        transfer.interpolate(support, NodalLayout::velocity);
+        transfer.interpolate(support,
+                             GridNodes<dim>::NodalLayout::velocity);
     });
     returned_momentum = Utilities::MPI::sum(returned_momentum, comm);
     mpm_tests::check("G2P of nodal velocities conserves momentum to 1e-13",

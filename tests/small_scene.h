@@ -6,6 +6,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <mpm/assembly/grid_nodes.h>
 #include <mpm/bodies/body.h>
 #include <mpm/bodies/point_seeder.h>
 #include <mpm/boundary/dirichlet_conditions.h>
@@ -14,6 +15,7 @@
 #include <mpm/points/material_points.h>
 
 #include <memory>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -55,6 +57,32 @@ namespace mpm_tests
     prm.leave_subsection();
     mpm::PointSeeder<dim> seeder(grid);
     seeder.seed(bodies, materials, points);
+  }
+  /**
+   * The total mass and momentum that the last projection put on the
+   * nodes, summed over owned nodes (so a node shared by ranks counts once)
+   * and over ranks.
+   */
+  template <int dim>
+  std::pair<double, dealii::Tensor<1, dim>>
+  grid_mass_and_momentum(const mpm::Grid<dim> &     grid,
+                         const mpm::GridNodes<dim> &nodes)
+  {
+    using NodalLayout = typename mpm::GridNodes<dim>::NodalLayout;
+    double                  mass = 0.;
+    dealii::Tensor<1, dim> momentum;
+    for (unsigned int node = 0;
+         node < grid.node_partitioner()->locally_owned_size();
+         ++node)
+      {
+        const double *v = nodes.values_of(node);
+        mass += v[NodalLayout::mass];
+        for (unsigned int d = 0; d < dim; ++d)
+          momentum[d] += v[NodalLayout::velocity + d];
+      }
+    const MPI_Comm comm = grid.get_communicator();
+    return {dealii::Utilities::MPI::sum(mass, comm),
+            dealii::Utilities::MPI::sum(momentum, comm)};
   }
 } // namespace mpm_tests
 

@@ -330,15 +330,11 @@ namespace mpm
                                contact.area;
                 rows.push_back(row);
               }
-        const char *axes   = "xyz";
-        std::string header;
-        for (unsigned int d = 0; d < dim; ++d)
-          header += std::string(1, axes[d]) + ',';
         write_gathered_csv(
           comm,
           rows,
           step_csv_name(directory, walls[w].name + "_tractions", step),
-          header + "normal_traction,tangential_traction");
+          coordinate_columns<dim>() + "normal_traction,tangential_traction");
       }
   }
 

@@ -319,15 +319,11 @@ namespace mpm
               row[dim + 1] = reaction.tangential.norm();
               rows.push_back(row);
             }
-        const char *axes   = "xyz";
-        std::string header;
-        for (unsigned int d = 0; d < dim; ++d)
-          header += std::string(1, axes[d]) + ',';
         write_gathered_csv(
           comm,
           rows,
           step_csv_name(directory, obstacles[k].name + "_forces", step),
-          header + "normal_force,tangential_force");
+          coordinate_columns<dim>() + "normal_force,tangential_force");
       }
   }
 

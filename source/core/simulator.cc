@@ -208,7 +208,12 @@ namespace mpm
       throw InputError("No body has a material point inside the grid: check "
                        "the shapes in Bodies against Grid/Arguments.");
 
-    nodal_conditions = {dirichlet.get(), friction_walls.get(), obstacles.get()};
+    // Only what the scene uses: each node asks every condition in the list.
+    nodal_conditions = {dirichlet.get()};
+    if (!friction_walls->empty())
+      nodal_conditions.push_back(friction_walls.get());
+    if (!obstacles->empty())
+      nodal_conditions.push_back(obstacles.get());
     transfer         = std::make_unique<GridTransfer<dim>>(
       *points, *basis, *nodes, nodal_conditions, gravity);
     const typename TimeScheme<dim>::Scene scene{*grid,

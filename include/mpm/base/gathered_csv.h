@@ -29,6 +29,14 @@ namespace mpm
     return file.str();
   }
 
+  /** "x,y," (2D) or "x,y,z,": the first columns of a file of positions. */
+  template <int dim>
+  std::string
+  coordinate_columns()
+  {
+    return std::string("x,y,z,").substr(0, 2 * dim);
+  }
+
   /**
    * Write rows that the ranks hold between them into one CSV file: rank 0
    * gathers them, sorts them (so that the file does not depend on the
