@@ -220,9 +220,10 @@ main(int argc, char **argv)
     StepKinematics k;
     k.dt = 1e-4;
     k.F_old = k.F_new = Tensor<2, 3>(unit_symmetric_tensor<3>());
-    const SymmetricTensor<2, 3> seeded = law->reference_stress();
-    SymmetricTensor<2, 3>       stress = seeded;
     std::vector<double>         internal(2, 0.);
+    const SymmetricTensor<2, 3> seeded = law->seeded_state(
+      law->density(), ArrayView<double>(internal.data(), 2));
+    SymmetricTensor<2, 3> stress = seeded;
     law->update_stress(k, stress, ArrayView<double>(internal.data(), 2));
     const SymmetricTensor<2, 3> p0_I = p0 * unit_symmetric_tensor<3>();
     mpm_tests::check("a seeded point is at -p0 I and stays there without "

@@ -56,7 +56,7 @@ namespace mpm_tests
     bodies.emplace_back(prm, "body", "body", std::vector<std::string>{"steel"});
     prm.leave_subsection();
     mpm::PointSeeder<dim> seeder(grid);
-    seeder.seed(bodies, materials, points);
+    seeder.release_due(bodies, materials, points, 0., 0.);
   }
   /**
    * The total mass and momentum that the last projection put on the

@@ -70,6 +70,8 @@ namespace mpm
         add_force(p, support);
     });
     nodes.finish_projection();
+    if (nodal_density)
+      nodal_density->compute_occupied_volumes(points.handler());
   }
 
 

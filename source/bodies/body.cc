@@ -51,6 +51,23 @@ namespace mpm
                       "Ratio of horizontal to vertical stress of the "
                       "geostatic stress; Jaky's 1 - sin(phi) is the usual "
                       "choice for normally consolidated soil.");
+    prm.declare_entry("Density", "", Patterns::Anything(),
+                      "The bulk density of the body's points [kg/m^3]; "
+                      "empty: its material's Density. Only for a law whose "
+                      "stress follows the density (Wieckowski granular: a "
+                      "loose portion of 1000 kg/m^3 starts stress-free).");
+    prm.declare_entry("First release", "0", Patterns::Double(0.),
+                      "Inflow: the time [s] at which the body's points are "
+                      "first put into the grid (0: at the start).");
+    prm.declare_entry("Releases", "1", Patterns::Integer(1),
+                      "Inflow: how many times the body is released, at "
+                      "First release + k Release interval, k = 0, 1, ...: "
+                      "each release seeds the body's region afresh (a "
+                      "portion of fill falling into a silo, [W] 5.1.2). "
+                      "The region's cells must be empty then.");
+    prm.declare_entry("Release interval", "0", Patterns::Double(0.),
+                      "Inflow: the time [s] between releases; must be "
+                      "positive if Releases > 1.");
     prm.declare_entry("Initial velocity", "0; 0; 0", Patterns::Anything(),
                       "Initial velocity as a function of position x, y (, z) "
                       "and the constant pi: one expression per component, "
@@ -68,6 +85,23 @@ namespace mpm
                   const std::vector<std::string> &material_names)
     : body_name(name)
   {
+    const std::string density_entry = prm.get("Density");
+    if (!density_entry.empty())
+      {
+        bulk_density = parse_number(density_entry,
+                                    section_path + "/Density = '" +
+                                      density_entry + "' is not a number.");
+        if (!(bulk_density > 0.))
+          throw InputError(section_path + "/Density = '" + density_entry +
+                           "' must be positive.");
+      }
+    first_release    = prm.get_double("First release");
+    n_releases       = prm.get_integer("Releases");
+    release_interval = prm.get_double("Release interval");
+    if (n_releases > 1 && !(release_interval > 0.))
+      throw InputError(section_path + "/Releases = " +
+                       std::to_string(n_releases) +
+                       " needs a positive Release interval.");
     geostatic_k0 = prm.get("Initial stress") == "geostatic" ?
                      prm.get_double("K0") :
                      -1.;
@@ -118,6 +152,15 @@ namespace mpm
     for (unsigned int d = 0; d < dim; ++d)
       v[d] = velocity->value(x, d);
     return v;
+  }
+
+
+
+  template <int dim>
+  double
+  Body<dim>::release_time(const unsigned int k) const
+  {
+    return first_release + k * release_interval;
   }
 
 

@@ -2,11 +2,13 @@
 
 #include <mpm/bodies/point_seeder.h>
 #include <mpm/base/input_error.h>
+#include <mpm/base/parse.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <sstream>
 
 namespace mpm
 {
@@ -19,12 +21,53 @@ namespace mpm
 
 
   template <int dim>
+  bool
+  PointSeeder<dim>::release_due(
+    const std::vector<Body<dim>> &                bodies,
+    const std::vector<std::unique_ptr<Material>> &materials,
+    MaterialPoints<dim> &                         points,
+    const double                                  time,
+    const double                                  tolerance)
+  {
+    releases_done.resize(bodies.size(), 0);
+    std::vector<unsigned int> due;
+    for (unsigned int b = 0; b < bodies.size(); ++b)
+      if (releases_done[b] < bodies[b].releases() &&
+          bodies[b].release_time(releases_done[b]) <= time + tolerance)
+        due.push_back(b);
+    if (due.empty())
+      return false;
+    for (const unsigned int b : due)
+      {
+        const Material &material = *materials[bodies[b].material_index()];
+        if (bodies[b].density() > 0. && !material.stress_follows_density())
+          throw InputError("Bodies/" + bodies[b].name() +
+                           "/Density: the stress of material '" +
+                           material.name() +
+                           "' does not follow the density, so its points "
+                           "must have the material's Density (leave the "
+                           "entry empty).");
+      }
+    seed(bodies, due, materials, points, time);
+    for (const unsigned int b : due)
+      ++releases_done[b];
+    return true;
+  }
+
+
+
+  template <int dim>
   void
   PointSeeder<dim>::seed(
     const std::vector<Body<dim>> &                bodies,
+    const std::vector<unsigned int> &             which,
     const std::vector<std::unique_ptr<Material>> &materials,
-    MaterialPoints<dim> &                         points)
+    MaterialPoints<dim> &                         points,
+    const double                                  time)
   {
+    // Bodies seeded together at the start may share cells; a later release
+    // goes into empty ones.
+    const bool into_empty_cells = time > 0.;
     using Layout = PointLayout<dim>;
     const Mapping<dim> &mapping = grid.get_mapping();
     struct Candidate
@@ -37,12 +80,14 @@ namespace mpm
       unsigned int                                     body;
     };
     std::vector<Candidate> candidates;
+    auto &                 handler  = points.handler();
+    bool                   occupied = false;
 
     for (const auto &cell : grid.get_triangulation().active_cell_iterators())
       {
         if (!cell->is_locally_owned())
           continue;
-        for (unsigned int b = 0; b < bodies.size(); ++b)
+        for (const unsigned int b : which)
           {
             const Quadrature<dim> &placement = bodies[b].point_placement();
             for (unsigned int k = 0; k < placement.size(); ++k)
@@ -53,11 +98,13 @@ namespace mpm
                 if (!bodies[b].contains(x))
                   continue;
                 bool owned_by_earlier_body = false;
-                for (unsigned int e = 0; e < b; ++e)
-                  if (bodies[e].contains(x))
+                for (const unsigned int e : which)
+                  if (e < b && bodies[e].contains(x))
                     owned_by_earlier_body = true;
                 if (owned_by_earlier_body)
                   continue;
+                if (into_empty_cells && handler.n_particles_in_cell(cell) > 0)
+                  occupied = true;
                 const double volume =
                   basis.volume_factor(cell->active_cell_index(), reference) *
                   placement.weight(k);
@@ -78,7 +125,16 @@ namespace mpm
           }
       }
 
-    const MPI_Comm      comm     = grid.get_communicator();
+    const MPI_Comm comm = grid.get_communicator();
+    if (Utilities::MPI::logical_or(occupied, comm))
+      {
+        std::ostringstream message;
+        message << "Bodies: a release of " << body_names(bodies, which)
+                << " is due at t = " << time << ", but material still lies in the cells of its "
+                   "region. Release less often (Release interval), or "
+                   "move the region away from where the material gathers.";
+        throw InputError(message.str());
+      }
     const std::uint64_t n_local  = candidates.size();
     std::uint64_t       first_id = 0;
     MPI_Exscan(&n_local, &first_id, 1, MPI_UINT64_T, MPI_SUM, comm);
@@ -87,14 +143,20 @@ namespace mpm
     first_id += next_id;
     next_id += Utilities::MPI::sum(n_local, comm);
 
-    auto &              handler = points.handler();
+    if (Utilities::MPI::sum(n_local, comm) == 0 && into_empty_cells)
+      throw InputError("Bodies: a release of " + body_names(bodies, which) +
+                       " puts no point into the grid: its region holds no "
+                       "point placement of a grid cell.");
     std::vector<double> properties(handler.n_properties_per_particle(), 0.);
     for (unsigned int i = 0; i < candidates.size(); ++i)
       {
         const Candidate &c        = candidates[i];
         const Material & material = *materials[bodies[c.body].material_index()];
         std::fill(properties.begin(), properties.end(), 0.);
-        properties[Layout::mass]             = material.density() * c.volume;
+        const double density = bodies[c.body].density() > 0. ?
+                                 bodies[c.body].density() :
+                                 material.density();
+        properties[Layout::mass]             = density * c.volume;
         properties[Layout::reference_volume] = c.volume;
         for (unsigned int d = 0; d < dim; ++d)
           properties[Layout::reference_size + d] = c.size[d];
@@ -106,9 +168,13 @@ namespace mpm
           }
         properties[Layout::body_id]     = c.body;
         properties[Layout::material_id] = bodies[c.body].material_index();
-        Layout::set_stress(ArrayView<double>(properties.data(),
-                                             properties.size()),
-                           material.reference_stress());
+        const ArrayView<double> p(properties.data(), properties.size());
+        Layout::set_stress(
+          p,
+          material.seeded_state(
+            density,
+            ArrayView<double>(&p[Layout::internal_variables],
+                              material.n_internal_variables())));
         handler.insert_particle(
           c.x,
           c.reference,
@@ -117,6 +183,19 @@ namespace mpm
           ArrayView<const double>(properties.data(), properties.size()));
       }
     handler.update_cached_numbers();
+  }
+
+
+
+  template <int dim>
+  std::string
+  PointSeeder<dim>::body_names(const std::vector<Body<dim>> &   bodies,
+                               const std::vector<unsigned int> &which)
+  {
+    std::vector<std::string> names;
+    for (const unsigned int b : which)
+      names.push_back("'" + bodies[b].name() + "'");
+    return comma_separated(names);
   }
 
 

@@ -9,6 +9,7 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -129,8 +130,17 @@ namespace mpm
         prm.enter_subsection(name);
         bodies.emplace_back(prm, name, "Bodies/" + name, names.materials);
         prm.leave_subsection();
+        if (bodies.back().is_inflow() && scheme_name != "explicit")
+          throw InputError("Bodies/" + name + ": an inflow (First release "
+                           "> 0 or Releases > 1) needs Time stepping/Scheme "
+                           "= explicit.");
       }
     prm.leave_subsection();
+    for (const auto &material : materials)
+      if (material->needs_density_from_positions() &&
+          scheme_name != "explicit")
+        throw InputError("Materials/" + material->name() + ": Density from "
+                         "positions needs Time stepping/Scheme = explicit.");
 
     grid      = std::make_unique<Grid<dim>>(prm, communicator);
     dirichlet = std::make_unique<DirichletConditions<dim>>(prm, *grid);
@@ -194,7 +204,7 @@ namespace mpm
                                                    scheme_name != "explicit");
     points->parse_outflow(prm);
     seeder = std::make_unique<PointSeeder<dim>>(*grid);
-    seeder->seed(bodies, materials, *points);
+    seeder->release_due(bodies, materials, *points, 0., 0.);
     seeder->apply_geostatic_stress(bodies, materials, gravity, *points);
     loads = std::make_unique<PointLoads<dim>>(prm,
                                               scheme_name == "quasi-static",
@@ -204,7 +214,11 @@ namespace mpm
                        "the quasi-static and Newmark schemes only; Time "
                        "stepping/Scheme = explicit would ignore them.");
     loads->apply(*points);
-    if (points->n_global_points() == 0)
+    const bool has_inflow =
+      std::any_of(bodies.begin(), bodies.end(), [](const Body<dim> &body) {
+        return body.is_inflow();
+      });
+    if (points->n_global_points() == 0 && !has_inflow)
       throw InputError("No body has a material point inside the grid: check "
                        "the shapes in Bodies against Grid/Arguments.");
 
@@ -216,6 +230,12 @@ namespace mpm
       nodal_conditions.push_back(obstacles.get());
     transfer         = std::make_unique<GridTransfer<dim>>(
       *points, *basis, *nodes, nodal_conditions, gravity);
+    if (std::any_of(materials.begin(),
+                    materials.end(),
+                    [](const std::unique_ptr<Material> &material) {
+                      return material->needs_density_from_positions();
+                    }))
+      transfer->enable_density_from_positions(*grid);
     const typename TimeScheme<dim>::Scene scene{*grid,
                                                 *points,
                                                 *transfer,
@@ -425,6 +445,12 @@ namespace mpm
     // its checkpoint repeats the uninterrupted run to the last bit).
     while (time < end_time - time_tolerance)
       {
+        {
+          TimerOutput::Scope t(timer, "inflow");
+          if (seeder->release_due(
+                bodies, materials, *points, time, time_tolerance))
+            scheme->points_added();
+        }
         dt = scheme->advance(time, step);
         {
           TimerOutput::Scope t(timer, "sort points");

@@ -123,6 +123,8 @@ namespace mpm
     auto kirchhoff = [&](const Tensor<2, 3> &F) {
       StepKinematics k = kinematics;
       k.F_new          = F;
+      // The density follows the perturbed volume.
+      k.density *= determinant(kinematics.F_new) / determinant(F);
       k.velocity_gradient =
         (F * F_old_inverse - Tensor<2, 3>(unit_symmetric_tensor<3>())) /
         kinematics.dt;

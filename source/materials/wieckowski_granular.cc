@@ -12,7 +12,8 @@ namespace mpm
     prm.enter_subsection("Wieckowski granular");
     prm.declare_entry("Reference pressure", "600", Patterns::Double(0.),
                       "p0 [Pa]: the pressure of the state from which the "
-                      "volume change is measured (the seeded state).");
+                      "volume change is measured, at the law's Density (a "
+                      "body seeded at it starts there).");
     prm.declare_entry("Reference void ratio", "0.9", Patterns::Double(0.),
                       "e0: the void ratio of that state. The Density entry "
                       "is the bulk density, rho_s / (1 + e0).");
@@ -23,6 +24,15 @@ namespace mpm
                       "compression. It also bounds the explicit step, "
                       "dt < rho h^2 / (2 mu_v), which the automatic step "
                       "takes into account.");
+    prm.declare_entry("Density from positions", "false", Patterns::Bool(),
+                      "true: the density of a point, and so its volume "
+                      "ratio J = rho_ref / rho to the reference state, is "
+                      "interpolated from nodal densities, the lumped nodal "
+                      "mass over the volume of the node's cells that hold "
+                      "material ([W] eqs. 12-13): a smooth pressure in a "
+                      "fill built from loose portions. false: the point's "
+                      "mass over its current volume (eq. 11). Explicit "
+                      "scheme only.");
     prm.leave_subsection();
   }
 
@@ -38,6 +48,7 @@ namespace mpm
     const double void_ratio   = prm.get_double("Reference void ratio");
     const double kappa        = prm.get_double("Elastic coefficient");
     bulk_viscosity            = prm.get_double("Bulk viscosity");
+    density_from_positions    = prm.get_bool("Density from positions");
     prm.leave_subsection();
     const std::string here = section_path + "/Wieckowski granular/";
     if (!(reference_pressure > 0.))
@@ -86,7 +97,11 @@ namespace mpm
   {
     const Tensor<2, 3> &        L = kinematics.velocity_gradient;
     const SymmetricTensor<2, 3> D = symmetrize(L);
-    const double                J = determinant(kinematics.F_new);
+    // The volume ratio to the reference state, rho_ref / rho: a point
+    // seeded loose (below the law's Density) starts expanded.
+    const double J = kinematics.density > 0. ?
+                       density() / kinematics.density :
+                       determinant(kinematics.F_new);
     internal_variables[1]         = std::log(J);
     if (separated(J))
       {
@@ -105,6 +120,20 @@ namespace mpm
     const auto [s, de] = viscoplastic_return(trial, p, G, kinematics.dt);
     stress = s - p * unit_symmetric_tensor<3>();
     internal_variables[0] += de;
+  }
+
+
+
+  SymmetricTensor<2, 3>
+  WieckowskiGranular::seeded_state(
+    const double             density,
+    const ArrayView<double> &internal_variables) const
+  {
+    const double J        = this->density() / density;
+    internal_variables[1] = std::log(J);
+    if (separated(J))
+      return {};
+    return -elastic_pressure(J) * unit_symmetric_tensor<3>();
   }
 
 

@@ -166,6 +166,7 @@ namespace mpm
     kinematics.F_new             = Layout::embed(F_new, 1.);
     kinematics.velocity_gradient = Layout::embed(L, 0.);
     kinematics.dt                = dt;
+    kinematics.density           = transfer.density(support, p, F_new);
     const Material &material =
       PointState<dim>::commit(materials, kinematics, p);
     report.max_signal_speed = std::max(

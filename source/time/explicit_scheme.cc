@@ -79,6 +79,17 @@ namespace mpm
 
 
   template <int dim>
+  void
+  ExplicitScheme<dim>::points_added()
+  {
+    const Speeds now = current_speeds();
+    speeds.point     = std::max(speeds.point, now.point);
+    speeds.signal    = std::max(speeds.signal, now.signal);
+  }
+
+
+
+  template <int dim>
   double
   ExplicitScheme<dim>::advance(const double time, const unsigned int step)
   {

@@ -81,8 +81,7 @@ namespace mpm
             const Tensor<2, dim>          dF =
               PointAssembly<dim>::deformation_increment(support, du);
             const Tensor<2, dim> F_n = Layout::get_deformation_gradient(p);
-            const StepKinematics k =
-              step_kinematics(dF, F_n, state.time_step);
+            const StepKinematics k = step_kinematics(dF, p, state.time_step);
             const Material &material =
               *materials[static_cast<unsigned int>(p[Layout::material_id])];
             const SymmetricTensor<2, 3> old_stress = Layout::get_stress(p);

@@ -174,8 +174,8 @@ namespace mpm
             const ArrayView<double> p = particle->get_properties();
             const Tensor<2, dim>    dF =
               PointAssembly<dim>::deformation_increment(support, du);
-            const StepKinematics k = ImplicitAssembler<dim>::step_kinematics(
-              dF, Layout::get_deformation_gradient(p), state.time_step);
+            const StepKinematics k =
+              ImplicitAssembler<dim>::step_kinematics(dF, p, state.time_step);
             PointState<dim>::commit(materials, k, p);
 
             Tensor<1, dim> displacement_at_point;

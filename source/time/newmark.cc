@@ -1,4 +1,5 @@
 #include <mpm/base/input_error.h>
+#include <mpm/base/parse.h>
 #include <mpm/time/newmark.h>
 
 #include <string>
@@ -43,17 +44,9 @@ namespace mpm
       const std::string text = prm.get(entry);
       if (text == "auto")
         return automatic;
-      try
-        {
-          std::size_t used  = 0;
-          const double value = std::stod(text, &used);
-          if (used == text.size())
-            return value;
-        }
-      catch (const std::exception &)
-        {}
-      throw InputError("Newmark/" + entry + " = '" + text +
-                       "' must be a number or 'auto'.");
+      return parse_number(text,
+                          "Newmark/" + entry + " = '" + text +
+                            "' must be a number or 'auto'.");
     };
     beta =
       number_or_auto("Beta", 0.25 * (1. - bossak_alpha) * (1. - bossak_alpha));

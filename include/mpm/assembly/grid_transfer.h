@@ -4,6 +4,7 @@
 #include <deal.II/base/tensor.h>
 
 #include <mpm/assembly/grid_nodes.h>
+#include <mpm/assembly/nodal_density.h>
 #include <mpm/assembly/point_assembly.h>
 #include <mpm/basis/grid_basis.h>
 #include <mpm/boundary/nodal_condition.h>
@@ -61,6 +62,32 @@ namespace mpm
     set_load_factor(const double factor)
     {
       load_factor = factor;
+    }
+
+    /**
+     * From now on, each projection of the mass also finds the occupied
+     * nodal volumes, and density() is the density from the point
+     * positions.
+     */
+    void
+    enable_density_from_positions(const Grid<dim> &grid)
+    {
+      nodal_density = std::make_unique<NodalDensity<dim>>(grid, basis);
+    }
+
+    /**
+     * The density of a point with properties p, support `support` and
+     * deformation gradient F: from the point positions if enabled, else
+     * its mass over its current volume.
+     */
+    double
+    density(const Support<dim> &           support,
+            const ArrayView<const double> &p,
+            const Tensor<2, dim> &         F) const
+    {
+      return nodal_density ?
+               nodal_density->at(support, nodes) :
+               p[Layout::mass] / Layout::current_volume(p, F);
     }
 
     /** The time at the start of the step, for conditions that change. */
@@ -157,6 +184,7 @@ namespace mpm
     double                                         load_factor = 1.;
     double                                         time        = 0.;
     typename PointAssembly<dim>::Scratch           scratch;
+    std::unique_ptr<NodalDensity<dim>>             nodal_density;
   };
 } // namespace mpm
 

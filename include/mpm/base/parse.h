@@ -19,6 +19,24 @@ namespace mpm
   using namespace dealii;
 
   /**
+   * The number `text` is, all of it; an InputError `message` otherwise.
+   */
+  inline double
+  parse_number(const std::string &text, const std::string &message)
+  {
+    try
+      {
+        std::size_t  used  = 0;
+        const double value = std::stod(text, &used);
+        if (used == text.size())
+          return value;
+      }
+    catch (const std::exception &)
+      {}
+    throw InputError(message);
+  }
+
+  /**
    * Parse `dim` comma-separated numbers, e.g. "0.2, 0.8", into a point.
    * `entry` names the parameter for the error message.
    */
@@ -34,20 +52,9 @@ namespace mpm
                        " comma-separated coordinates.");
     Point<dim> p;
     for (unsigned int d = 0; d < dim; ++d)
-      {
-        try
-          {
-            std::size_t used = 0;
-            p[d]             = std::stod(parts[d], &used);
-            if (used != parts[d].size())
-              throw std::invalid_argument(parts[d]);
-          }
-        catch (const std::exception &)
-          {
-            throw InputError(entry + " = '" + text + "': '" + parts[d] +
-                             "' is not a number.");
-          }
-      }
+      p[d] = parse_number(parts[d],
+                          entry + " = '" + text + "': '" + parts[d] +
+                            "' is not a number.");
     return p;
   }
 
@@ -63,19 +70,10 @@ namespace mpm
     if (at == std::string::npos)
       return {item, std::numeric_limits<double>::infinity()};
     const std::string time = Utilities::trim(item.substr(at + 7));
-    try
-      {
-        std::size_t  used = 0;
-        const double t    = std::stod(time, &used);
-        if (used != time.size())
-          throw std::invalid_argument(time);
-        return {Utilities::trim(item.substr(0, at)), t};
-      }
-    catch (const std::exception &)
-      {
-        throw InputError(entry + ": '" + item +
-                         "': the time after 'until' is not a number.");
-      }
+    return {Utilities::trim(item.substr(0, at)),
+            parse_number(time,
+                         entry + ": '" + item +
+                           "': the time after 'until' is not a number.")};
   }
 
   /**
@@ -85,18 +83,8 @@ namespace mpm
   inline double
   parse_friction_coefficient(const std::string &text, const std::string &what)
   {
-    double friction = 0.;
-    try
-      {
-        std::size_t used = 0;
-        friction         = std::stod(text, &used);
-        if (used != text.size())
-          throw std::invalid_argument(text);
-      }
-    catch (const std::exception &)
-      {
-        throw InputError(what + " = '" + text + "' is not a number.");
-      }
+    const double friction =
+      parse_number(text, what + " = '" + text + "' is not a number.");
     if (!(friction >= 0.))
       throw InputError(what + " = " + text +
                        " must be 0 or more (inf: no sliding).");

@@ -8,6 +8,7 @@
 #include <mpm/grid/grid.h>
 
 #include <array>
+#include <cmath>
 
 namespace mpm
 {
@@ -75,6 +76,34 @@ namespace mpm
       reference_values(reference_point, values, grad_ref);
       return determinant(
         jacobian(grid.cell_geometry(active_cell_index), grad_ref));
+    }
+
+    /**
+     * The integrals of the cell's shape functions, int_c N_v dV, by the
+     * 2^dim-point Gauss rule (exact on bilinear cells): V/4 on a 2D
+     * parallelogram.
+     */
+    void
+    nodal_volumes(const unsigned int              active_cell_index,
+                  std::array<double, n_vertices> &volumes) const
+    {
+      const double offset = 0.5 / std::sqrt(3.);
+      volumes.fill(0.);
+      std::array<double, n_vertices>         values;
+      std::array<Tensor<1, dim>, n_vertices> grad_ref;
+      for (unsigned int q = 0; q < n_vertices; ++q)
+        {
+          Point<dim> xi;
+          for (unsigned int d = 0; d < dim; ++d)
+            xi[d] = (q & (1u << d)) ? 0.5 + offset : 0.5 - offset;
+          reference_values(xi, values, grad_ref);
+          const double weight =
+            determinant(jacobian(grid.cell_geometry(active_cell_index),
+                                 grad_ref)) /
+            n_vertices;
+          for (unsigned int v = 0; v < n_vertices; ++v)
+            volumes[v] += weight * values[v];
+        }
     }
 
   private:

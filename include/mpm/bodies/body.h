@@ -87,6 +87,31 @@ namespace mpm
       return placement_1d.weight(index % placement_1d.size());
     }
 
+    /** The bulk density of its points; 0: the material's Density. */
+    double
+    density() const
+    {
+      return bulk_density;
+    }
+
+    /** How many times the body is put into the grid (1: once). */
+    unsigned int
+    releases() const
+    {
+      return n_releases;
+    }
+
+    /** The time of the k-th release, k = 0, 1, ... */
+    double
+    release_time(const unsigned int k) const;
+
+    /** Whether the body is put into the grid after the start. */
+    bool
+    is_inflow() const
+    {
+      return n_releases > 1 || first_release > 0.;
+    }
+
     /** Whether the body starts under geostatic stress. */
     bool
     geostatic() const
@@ -105,6 +130,10 @@ namespace mpm
     std::string                 body_name;
     std::unique_ptr<Shape<dim>> shape;
     unsigned int            material = 0;
+    double                  bulk_density     = 0.;
+    double                  first_release    = 0.;
+    unsigned int            n_releases       = 1;
+    double                  release_interval = 0.;
     /** K0 of the geostatic stress; negative: no initial stress. */
     double                  geostatic_k0 = -1.;
     Quadrature<1>           placement_1d;

@@ -4,6 +4,8 @@
 #include <deal.II/base/tensor.h>
 #include <deal.II/particles/property_pool.h>
 
+#include <boost/serialization/vector.hpp>
+
 #include <mpm/basis/grid_basis.h>
 #include <mpm/bodies/body.h>
 #include <mpm/grid/grid.h>
@@ -11,6 +13,7 @@
 #include <mpm/points/material_points.h>
 
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace mpm
@@ -31,17 +34,24 @@ namespace mpm
     explicit PointSeeder(const Grid<dim> &grid);
 
     /**
-     * Fill every locally owned cell with the points of the bodies that
-     * contain them (a point inside several bodies goes to the first), at
-     * the positions of the body's point placement (a quadrature on the
-     * reference cell), each with volume det J times its weight (exact for
-     * bilinear cells), the law's reference stress and the body's initial
-     * velocity.
+     * Put into the grid every body whose next release is due at `time`
+     * (within `tolerance`): at the start, the bodies of the scene; later,
+     * the inflows. Each release fills every locally owned cell with the
+     * points of the released bodies that contain them (a point inside
+     * several bodies goes to the first), at the positions of the body's
+     * point placement (a quadrature on the reference cell), each with
+     * volume det J times its weight (exact for bilinear cells), mass from
+     * the body's density, the law's seeded state and the body's initial
+     * velocity. A release after the start into cells that hold material,
+     * or one that puts no point into the grid, is refused. Returns whether
+     * points were added.
      */
-    void
-    seed(const std::vector<Body<dim>> &                bodies,
-         const std::vector<std::unique_ptr<Material>> &materials,
-         MaterialPoints<dim> &                         points);
+    bool
+    release_due(const std::vector<Body<dim>> &                bodies,
+                const std::vector<std::unique_ptr<Material>> &materials,
+                MaterialPoints<dim> &                         points,
+                const double                                  time,
+                const double                                  tolerance);
 
     /**
      * Start the points of geostatic bodies under the K0 stress: vertical
@@ -57,18 +67,32 @@ namespace mpm
       const Tensor<1, dim> &                        gravity,
       MaterialPoints<dim> &                         points) const;
 
-    /** The id the next point will get, for Checkpoint. */
+    /** The id the next point gets and the releases done, for Checkpoint. */
     template <class Archive>
     void
     serialize(Archive &archive, const unsigned int)
     {
-      archive &next_id;
+      archive &next_id &releases_done;
     }
 
   private:
+    /** Seed the bodies `which` (indices into `bodies`) at `time`. */
+    void
+    seed(const std::vector<Body<dim>> &                bodies,
+         const std::vector<unsigned int> &             which,
+         const std::vector<std::unique_ptr<Material>> &materials,
+         MaterialPoints<dim> &                         points,
+         const double                                  time);
+
+    static std::string
+    body_names(const std::vector<Body<dim>> &   bodies,
+               const std::vector<unsigned int> &which);
+
     const Grid<dim>       &grid;
     const GridBasis<dim>   basis;
     types::particle_index next_id = 0;
+    /** Per body, how many times it has been released. */
+    std::vector<unsigned int> releases_done;
   };
 } // namespace mpm
 

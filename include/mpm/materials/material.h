@@ -27,6 +27,13 @@ namespace mpm
     /** Velocity gradient L over the step: F_new = (I + dt L) F_old. */
     Tensor<2, 3> velocity_gradient;
     double       dt;
+    /**
+     * The point's density at the end of the step: its mass over its current
+     * volume, or the density from the point positions ([W] eqs. 12-13) where
+     * a law asks for it. 0: not given; a law that needs it then takes its
+     * own Density over det F_new.
+     */
+    double density = 0.;
   };
 
   /**
@@ -176,16 +183,39 @@ namespace mpm
     }
 
     /**
-     * The stress of a freshly seeded point (F = I, zero internal
-     * variables): zero, except for a law whose reference state is stressed.
-     * Such a law must refuse initialize_stress(), which would replace it.
-     * Its work density starts at zero, so its stored energy is measured
-     * from the seeded state.
+     * The state of a freshly seeded point (F = I) of the given density:
+     * sets its internal variables (zero on entry) and returns its stress,
+     * zero except for a law whose seeded state is stressed. Such a law must
+     * refuse initialize_stress(), which would replace it. The work density
+     * starts at zero, so the stored energy is measured from the seeded
+     * state.
      */
     virtual SymmetricTensor<2, 3>
-    reference_stress() const
+    seeded_state(const double /*density*/,
+                 const ArrayView<double> & /*internal_variables*/) const
     {
       return {};
+    }
+
+    /**
+     * Whether the stress follows the point's density (StepKinematics::
+     * density) rather than F alone, so that a body of this law may be
+     * seeded at a density other than the law's (a loose portion).
+     */
+    virtual bool
+    stress_follows_density() const
+    {
+      return false;
+    }
+
+    /**
+     * Whether the law takes the density from the point positions, [W]
+     * eqs. 12-13, instead of mass over current volume.
+     */
+    virtual bool
+    needs_density_from_positions() const
+    {
+      return false;
     }
 
   protected:

@@ -9,7 +9,10 @@ namespace mpm
    * Wieckowski's (2004) law for loose granular fill, section 5.1.2. The
    * pressure is that of eq. (24),
    *   p = p0 exp((1 + e0)/kappa (1 - J)) + (-mu_v tr D)^+,
-   * with J = exp(eps_vol) the volume ratio to the state (p0, e0); its
+   * with J = exp(eps_vol) = rho_ref / rho the volume ratio to the state
+   * (p0, e0), rho_ref the law's Density and rho the point's (seeded at
+   * another bulk density, a point starts at its J; with `Density from
+   * positions`, rho is that of [W] eqs. 12-13); its
    * elastic part is the void-ratio law e - e0 = -kappa ln(p/p0) and is
    * evaluated in closed form from J (no drift), the viscous part from the
    * step's rate. The deviator is that of the Drucker-Prager viscoplastic
@@ -48,11 +51,25 @@ namespace mpm
                  const ArrayView<const double> &internal_variables,
                  const double                   cell_size) const override;
 
-    /** -p0 I: a seeded point is in the reference state (p0, e0). */
+    /**
+     * A point seeded at density rho has J = rho_ref / rho and its elastic
+     * pressure: -p0 I at the law's Density, none in a loose portion.
+     */
     SymmetricTensor<2, 3>
-    reference_stress() const override
+    seeded_state(const double             density,
+                 const ArrayView<double> &internal_variables) const override;
+
+    /** The pressure follows the volume ratio rho_ref / rho. */
+    bool
+    stress_follows_density() const override
     {
-      return -reference_pressure * unit_symmetric_tensor<3>();
+      return true;
+    }
+
+    bool
+    needs_density_from_positions() const override
+    {
+      return density_from_positions;
     }
 
     /** Elastic pressure p0 exp((1 + e0)/kappa (1 - J)). */
@@ -77,6 +94,7 @@ namespace mpm
     double compression_ratio; // (1 + e0) / kappa
     double bulk_viscosity;
     double shear_to_bulk; // 3/2 (1 - 2 nu)/(1 + nu)
+    bool   density_from_positions;
   };
 } // namespace mpm
 

@@ -34,6 +34,10 @@ namespace mpm
     void
     start() override;
 
+    /** The next step also follows the speeds of the new points. */
+    void
+    points_added() override;
+
     double
     advance(const double time, const unsigned int step) override;
 

@@ -42,22 +42,27 @@ namespace mpm
              const bool          with_tangent);
 
     /**
-     * What the law sees of a step with deformation increment dF from F_n:
-     * F_new = dF F_n, and the velocity gradient L = (dF - I) / dt over the
-     * step (or load step, in pseudo-time), so rate laws see their rate.
+     * What the law sees of a step of the point with properties p by the
+     * deformation increment dF from its F_n: F_new = dF F_n, the velocity
+     * gradient L = (dF - I) / dt over the step (or load step, in
+     * pseudo-time), so rate laws see their rate, and the density at F_new.
      */
     static StepKinematics
-    step_kinematics(const Tensor<2, dim> &dF,
-                    const Tensor<2, dim> &F_n,
-                    const double          dt)
+    step_kinematics(const Tensor<2, dim> &         dF,
+                    const ArrayView<const double> &p,
+                    const double                   dt)
     {
-      StepKinematics k;
-      k.F_old             = PointLayout<dim>::embed(F_n, 1.);
-      k.F_new             = PointLayout<dim>::embed(dF * F_n, 1.);
+      using Layout                = PointLayout<dim>;
+      const Tensor<2, dim> F_n    = Layout::get_deformation_gradient(p);
+      const Tensor<2, dim> F_new  = dF * F_n;
+      StepKinematics       k;
+      k.F_old             = Layout::embed(F_n, 1.);
+      k.F_new             = Layout::embed(F_new, 1.);
       k.dt                = dt;
-      k.velocity_gradient = (PointLayout<dim>::embed(dF, 1.) -
+      k.velocity_gradient = (Layout::embed(dF, 1.) -
                              Tensor<2, 3>(unit_symmetric_tensor<3>())) /
                             dt;
+      k.density = p[Layout::mass] / Layout::current_volume(p, F_new);
       return k;
     }
 

@@ -88,6 +88,11 @@ namespace mpm
     start()
     {}
 
+    /** Points were added (an inflow) before the next step. */
+    virtual void
+    points_added()
+    {}
+
     /**
      * Take step number `step` + 1 from `time`, shortened only if it would
      * overshoot End time, and move the points (not yet re-sorted). Returns

@@ -1,0 +1,66 @@
+#ifndef mpm_assembly_nodal_density_h
+#define mpm_assembly_nodal_density_h
+
+#include <deal.II/lac/la_parallel_vector.h>
+#include <deal.II/particles/particle_handler.h>
+
+#include <mpm/assembly/grid_nodes.h>
+#include <mpm/basis/grid_basis.h>
+#include <mpm/basis/support.h>
+
+namespace mpm
+{
+  using namespace dealii;
+
+  /**
+   * The density from the point positions, Wieckowski (2004) eqs. 12-13 in
+   * their Q1 form: a nodal density rho_i = m_i / V_i, the lumped nodal mass
+   * over the occupied nodal volume V_i, the sum of int_c N_i dV over the
+   * cells c around node i that hold at least one point; interpolated to a
+   * point, rho_P = sum_i N_i(x_P) rho_i. On a lattice of points at the
+   * centres of a regular subdivision of each cell the midpoint rule makes
+   * both sums exact, so rho_P is the lattice's density everywhere,
+   * on a free surface along grid lines too.
+   */
+  template <int dim>
+  class NodalDensity
+  {
+  public:
+    NodalDensity(const Grid<dim> &grid, const GridBasis<dim> &basis);
+
+    /**
+     * The occupied nodal volumes of the cells that hold points of
+     * `handler`, summed across ranks (owned and ghost nodes).
+     */
+    void
+    compute_occupied_volumes(const Particles::ParticleHandler<dim> &handler);
+
+    /**
+     * rho_P at a point with this support, from the nodal masses of the
+     * last projection.
+     */
+    double
+    at(const Support<dim> &support, const GridNodes<dim> &nodes) const
+    {
+      using NodalLayout = typename GridNodes<dim>::NodalLayout;
+      double density = 0.;
+      for (unsigned int i = 0; i < support.n_nodes; ++i)
+        {
+          const double volume =
+            occupied_volume.local_element(support.nodes[i]);
+          if (volume > 0.)
+            density += support.N[i] *
+                       nodes.values_of(support.nodes[i])[NodalLayout::mass] /
+                       volume;
+        }
+      return density;
+    }
+
+  private:
+    const Grid<dim> &                          grid;
+    const GridBasis<dim> &                     basis;
+    LinearAlgebra::distributed::Vector<double> occupied_volume;
+  };
+} // namespace mpm
+
+#endif

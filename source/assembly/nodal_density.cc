@@ -1,0 +1,42 @@
+#include <mpm/assembly/nodal_density.h>
+
+namespace mpm
+{
+  template <int dim>
+  NodalDensity<dim>::NodalDensity(const Grid<dim> &     grid,
+                                  const GridBasis<dim> &basis)
+    : grid(grid)
+    , basis(basis)
+  {}
+
+
+
+  template <int dim>
+  void
+  NodalDensity<dim>::compute_occupied_volumes(
+    const Particles::ParticleHandler<dim> &handler)
+  {
+    // The grid may have changed since the last step.
+    if (occupied_volume.get_partitioner() != grid.node_partitioner())
+      occupied_volume.reinit(grid.node_partitioner());
+    else
+      occupied_volume = 0.;
+    std::array<double, GridBasis<dim>::n_vertices> volumes;
+    for (const auto &cell : grid.get_triangulation().active_cell_iterators())
+      if (cell->is_locally_owned() && handler.n_particles_in_cell(cell) > 0)
+        {
+          const unsigned int index = cell->active_cell_index();
+          basis.nodal_volumes(index, volumes);
+          for (unsigned int v = 0; v < volumes.size(); ++v)
+            occupied_volume.local_element(grid.node_of(index, v)) +=
+              volumes[v];
+        }
+    occupied_volume.compress(VectorOperation::add);
+    occupied_volume.update_ghost_values();
+  }
+
+
+
+  template class NodalDensity<2>;
+  template class NodalDensity<3>;
+} // namespace mpm
