@@ -231,6 +231,25 @@ main(int argc, char **argv)
            with({"Materials/Names=rubber, fill",
                  "Materials/rubber/Model=Mohr-Coulomb",
                  "Materials/fill/Model=Wieckowski granular"}));
+  run_case("a body Density for a law whose stress does not follow it",
+           with({"Bodies/block/Density=1000"}));
+  run_case("a negative body Density",
+           with({"Materials/rubber/Model=Wieckowski granular",
+                 "Bodies/block/Density=-5"}));
+  run_case("Releases without a Release interval",
+           with({"Bodies/block/Releases=3"}));
+  run_case("an inflow with the quasi-static scheme",
+           with({"Bodies/block/First release=0.1",
+                 "Time stepping/Scheme=quasi-static"}));
+  run_case("density from positions with the quasi-static scheme",
+           with({"Materials/rubber/Model=Wieckowski granular",
+                 "Materials/rubber/Wieckowski granular/Density from "
+                 "positions=true",
+                 "Time stepping/Scheme=quasi-static"}));
+  run_case("a release whose region lies outside the grid",
+           with({"Bodies/block/First release=0.01",
+                 "Bodies/block/Lower corner=5, 5",
+                 "Bodies/block/Upper corner=6, 6"}));
   run_case("Stop after without checkpoints",
            with({"Checkpoint/Stop after=60"}));
   {

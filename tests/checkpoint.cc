@@ -7,7 +7,8 @@
 // it), and one continues from checkpoint.old/, as after a run killed
 // between the renames that swap a new checkpoint in. The scenes cover the
 // explicit scheme, the quasi-static scheme,
-// Newmark with walls, a wall that ends and an outflow boundary, and (on
+// Newmark with walls, a wall that ends and an outflow boundary, an inflow
+// whose releases fall before, between and after the parts, and (on
 // one rank) the meshfree methods with their node cloud. Two last cases continue runs with other step sizes, as after
 // a run that went unstable. Bad input for checkpoints is in bad_input.cc.
 
@@ -260,6 +261,24 @@ main(int argc, char **argv)
           {stop_after_one_step,
            stop_after_one_step,
            {"Time stepping/End time=0.1",
+            "Checkpoint/Wall time interval=1e-9"},
+           to_the_end});
+
+  // Releases of an inflow before, between and after the parts (an empty
+  // grid until 0.002 s, releases at 0.002, 0.152 and 0.302 s), with the
+  // density from the point positions: the parts must release what the
+  // straight run does, when it does, with the same ids.
+  compare("inflow, releases across the parts",
+          mpm_tests::source_file("scenes/inflow.prm"),
+          {"Bodies/portion/First release=0.002",
+           "Bodies/portion/Release interval=0.15",
+           "Materials/fill/Wieckowski granular/Density from positions=true",
+           "Time stepping/End time=0.35",
+           "Time stepping/Time step=1e-3",
+           "Output/Interval=0.05"},
+          {stop_after_one_step,
+           stop_after_one_step,
+           {"Time stepping/End time=0.2",
             "Checkpoint/Wall time interval=1e-9"},
            to_the_end});
 

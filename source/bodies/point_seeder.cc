@@ -29,6 +29,10 @@ namespace mpm
     const double                                  time,
     const double                                  tolerance)
   {
+    // The start: what is wrong with a body says so now, not when the body
+    // is due.
+    if (releases_done.empty())
+      check_bodies(bodies, materials);
     releases_done.resize(bodies.size(), 0);
     std::vector<unsigned int> due;
     for (unsigned int b = 0; b < bodies.size(); ++b)
@@ -37,7 +41,21 @@ namespace mpm
         due.push_back(b);
     if (due.empty())
       return false;
+    seed(bodies, due, materials, points, time);
     for (const unsigned int b : due)
+      ++releases_done[b];
+    return true;
+  }
+
+
+
+  template <int dim>
+  void
+  PointSeeder<dim>::check_bodies(
+    const std::vector<Body<dim>> &                bodies,
+    const std::vector<std::unique_ptr<Material>> &materials) const
+  {
+    for (unsigned int b = 0; b < bodies.size(); ++b)
       {
         const Material &material = *materials[bodies[b].material_index()];
         if (bodies[b].density() > 0. && !material.stress_follows_density())
@@ -47,11 +65,17 @@ namespace mpm
                            "' does not follow the density, so its points "
                            "must have the material's Density (leave the "
                            "entry empty).");
+        bool                occupied = false;
+        const std::uint64_t n =
+          bodies[b].release_time(0) > 0. ?
+            collect_candidates(bodies, {b}, nullptr, occupied).size() :
+            1;
+        if (Utilities::MPI::sum(n, grid.get_communicator()) == 0)
+          throw InputError("Bodies/" + bodies[b].name() +
+                           ": the region of this inflow holds no point "
+                           "placement of a grid cell, so its releases would "
+                           "put no point into the grid.");
       }
-    seed(bodies, due, materials, points, time);
-    for (const unsigned int b : due)
-      ++releases_done[b];
-    return true;
   }
 
 
@@ -65,65 +89,14 @@ namespace mpm
     MaterialPoints<dim> &                         points,
     const double                                  time)
   {
+    using Layout = PointLayout<dim>;
+    auto &handler = points.handler();
     // Bodies seeded together at the start may share cells; a later release
     // goes into empty ones.
-    const bool into_empty_cells = time > 0.;
-    using Layout = PointLayout<dim>;
-    const Mapping<dim> &mapping = grid.get_mapping();
-    struct Candidate
-    {
-      Point<dim>                                       x;
-      Point<dim>                                       reference;
-      typename Triangulation<dim>::active_cell_iterator cell;
-      double                                           volume;
-      Tensor<1, dim>                                   size;
-      unsigned int                                     body;
-    };
-    std::vector<Candidate> candidates;
-    auto &                 handler  = points.handler();
-    bool                   occupied = false;
-
-    for (const auto &cell : grid.get_triangulation().active_cell_iterators())
-      {
-        if (!cell->is_locally_owned())
-          continue;
-        for (const unsigned int b : which)
-          {
-            const Quadrature<dim> &placement = bodies[b].point_placement();
-            for (unsigned int k = 0; k < placement.size(); ++k)
-              {
-                const Point<dim> &reference = placement.point(k);
-                const Point<dim>  x =
-                  mapping.transform_unit_to_real_cell(cell, reference);
-                if (!bodies[b].contains(x))
-                  continue;
-                bool owned_by_earlier_body = false;
-                for (const unsigned int e : which)
-                  if (e < b && bodies[e].contains(x))
-                    owned_by_earlier_body = true;
-                if (owned_by_earlier_body)
-                  continue;
-                if (into_empty_cells && handler.n_particles_in_cell(cell) > 0)
-                  occupied = true;
-                const double volume =
-                  basis.volume_factor(cell->active_cell_index(), reference) *
-                  placement.weight(k);
-                // The cell's extent times the 1D weight in each direction,
-                // scaled so that the edges multiply to the volume (exact on
-                // a Cartesian cell).
-                Tensor<1, dim> size;
-                double         box = 1.;
-                for (unsigned int d = 0; d < dim; ++d)
-                  {
-                    size[d] = cell->extent_in_direction(d) *
-                              bodies[b].placement_weight_1d(k, d);
-                    box *= size[d];
-                  }
-                size *= std::pow(volume / box, 1. / dim);
-                candidates.push_back({x, reference, cell, volume, size, b});
-              }
-          }
-      }
+    bool                         occupied = false;
+    const std::vector<Candidate> candidates =
+      collect_candidates(bodies, which, time > 0. ? &handler : nullptr,
+                         occupied);
 
     const MPI_Comm comm = grid.get_communicator();
     if (Utilities::MPI::logical_or(occupied, comm))
@@ -143,10 +116,6 @@ namespace mpm
     first_id += next_id;
     next_id += Utilities::MPI::sum(n_local, comm);
 
-    if (Utilities::MPI::sum(n_local, comm) == 0 && into_empty_cells)
-      throw InputError("Bodies: a release of " + body_names(bodies, which) +
-                       " puts no point into the grid: its region holds no "
-                       "point placement of a grid cell.");
     std::vector<double> properties(handler.n_properties_per_particle(), 0.);
     for (unsigned int i = 0; i < candidates.size(); ++i)
       {
@@ -183,6 +152,75 @@ namespace mpm
           ArrayView<const double>(properties.data(), properties.size()));
       }
     handler.update_cached_numbers();
+  }
+
+
+
+  template <int dim>
+  std::vector<typename PointSeeder<dim>::Candidate>
+  PointSeeder<dim>::collect_candidates(
+    const std::vector<Body<dim>> &                bodies,
+    const std::vector<unsigned int> &             which,
+    const Particles::ParticleHandler<dim> *       present,
+    bool &                                        occupied) const
+  {
+    const Mapping<dim> &   mapping = grid.get_mapping();
+    std::vector<Candidate> candidates;
+    for (const auto &cell : grid.get_triangulation().active_cell_iterators())
+      {
+        if (!cell->is_locally_owned())
+          continue;
+        for (const unsigned int b : which)
+          {
+            const Quadrature<dim> &placement = bodies[b].point_placement();
+            for (unsigned int k = 0; k < placement.size(); ++k)
+              {
+                const Point<dim> &reference = placement.point(k);
+                const Point<dim>  x =
+                  mapping.transform_unit_to_real_cell(cell, reference);
+                if (!bodies[b].contains(x))
+                  continue;
+                bool owned_by_earlier_body = false;
+                for (const unsigned int e : which)
+                  if (e < b && bodies[e].contains(x))
+                    owned_by_earlier_body = true;
+                if (owned_by_earlier_body)
+                  continue;
+                if (present != nullptr && present->n_particles_in_cell(cell) > 0)
+                  occupied = true;
+                const double volume =
+                  basis.volume_factor(cell->active_cell_index(), reference) *
+                  placement.weight(k);
+                // The cell's extent times the 1D weight in each direction,
+                // scaled so that the edges multiply to the volume (exact on
+                // a Cartesian cell).
+                Tensor<1, dim> size;
+                double         box = 1.;
+                for (unsigned int d = 0; d < dim; ++d)
+                  {
+                    size[d] = cell->extent_in_direction(d) *
+                              bodies[b].placement_weight_1d(k, d);
+                    box *= size[d];
+                  }
+                size *= std::pow(volume / box, 1. / dim);
+                candidates.push_back({x, reference, cell, volume, size, b});
+              }
+          }
+      }
+    return candidates;
+  }
+
+
+
+  template <int dim>
+  double
+  PointSeeder<dim>::next_release_time(const std::vector<Body<dim>> &bodies) const
+  {
+    double next = std::numeric_limits<double>::infinity();
+    for (unsigned int b = 0; b < bodies.size(); ++b)
+      if (b < releases_done.size() && releases_done[b] < bodies[b].releases())
+        next = std::min(next, bodies[b].release_time(releases_done[b]));
+    return next;
   }
 
 

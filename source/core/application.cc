@@ -167,6 +167,12 @@ namespace mpm
           throw RunError(e.what() + simulator.restart_hint(),
                          e.smaller_step_helps);
         }
+      // Input that only shows during the run (a release into occupied
+      // cells) is still bad input.
+      catch (const InputError &)
+        {
+          throw;
+        }
       catch (const ExceptionBase &e)
         {
           throw UnexpectedRunError(message_of(e));

@@ -450,6 +450,7 @@ namespace mpm
           if (seeder->release_due(
                 bodies, materials, *points, time, time_tolerance))
             scheme->points_added();
+          scheme->end_next_step_by(seeder->next_release_time(bodies));
         }
         dt = scheme->advance(time, step);
         {

@@ -42,9 +42,8 @@ namespace mpm
      * point placement (a quadrature on the reference cell), each with
      * volume det J times its weight (exact for bilinear cells), mass from
      * the body's density, the law's seeded state and the body's initial
-     * velocity. A release after the start into cells that hold material,
-     * or one that puts no point into the grid, is refused. Returns whether
-     * points were added.
+     * velocity. A release after the start into cells that hold material
+     * is refused. Returns whether points were added.
      */
     bool
     release_due(const std::vector<Body<dim>> &                bodies,
@@ -52,6 +51,10 @@ namespace mpm
                 MaterialPoints<dim> &                         points,
                 const double                                  time,
                 const double                                  tolerance);
+
+    /** The time of the next release due after the ones done (inf: none). */
+    double
+    next_release_time(const std::vector<Body<dim>> &bodies) const;
 
     /**
      * Start the points of geostatic bodies under the K0 stress: vertical
@@ -76,6 +79,36 @@ namespace mpm
     }
 
   private:
+    /** A point to be seeded. */
+    struct Candidate
+    {
+      Point<dim>                                        x;
+      Point<dim>                                        reference;
+      typename Triangulation<dim>::active_cell_iterator cell;
+      double                                            volume;
+      Tensor<1, dim>                                    size;
+      unsigned int                                      body;
+    };
+
+    /**
+     * The points of the bodies `which` in the locally owned cells; with
+     * `present`, `occupied` is set if one of their cells holds a point of
+     * it.
+     */
+    std::vector<Candidate>
+    collect_candidates(const std::vector<Body<dim>> &          bodies,
+                       const std::vector<unsigned int> &       which,
+                       const Particles::ParticleHandler<dim> * present,
+                       bool &                                  occupied) const;
+
+    /**
+     * Bad input of the bodies, found at the start: a Density that the law
+     * does not follow, an inflow whose region misses the grid.
+     */
+    void
+    check_bodies(const std::vector<Body<dim>> &                bodies,
+                 const std::vector<std::unique_ptr<Material>> &materials) const;
+
     /** Seed the bodies `which` (indices into `bodies`) at `time`. */
     void
     seed(const std::vector<Body<dim>> &                bodies,

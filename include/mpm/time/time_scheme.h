@@ -15,6 +15,8 @@
 #include <mpm/materials/material.h>
 #include <mpm/points/material_points.h>
 
+#include <algorithm>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -88,6 +90,16 @@ namespace mpm
     start()
     {}
 
+    /**
+     * The next step ends no later than t (the next release of an inflow),
+     * as it ends at End time.
+     */
+    void
+    end_next_step_by(const double t)
+    {
+      next_event = t;
+    }
+
     /** Points were added (an inflow) before the next step. */
     virtual void
     points_added()
@@ -145,8 +157,8 @@ namespace mpm
     double
     step_to_end(const double time, const double dt) const
     {
-      return time + dt > final_time + end_time_tolerance() ? final_time - time :
-                                                              dt;
+      const double stop = std::min(final_time, next_event);
+      return time + dt > stop + end_time_tolerance() ? stop - time : dt;
     }
 
     /** An entry of `Time stepping` (the handler is at top level). */
@@ -163,6 +175,7 @@ namespace mpm
     double final_time;
     /** Time stepping/Time step: 0 chooses the explicit step. */
     double fixed_time_step;
+    double next_event = std::numeric_limits<double>::infinity();
   };
 } // namespace mpm
 
