@@ -246,6 +246,10 @@ main(int argc, char **argv)
                  "Materials/rubber/Wieckowski granular/Density from "
                  "positions=true",
                  "Time stepping/Scheme=quasi-static"}));
+  run_case("an inflow under geostatic stress",
+           with({"Bodies/block/Releases=2",
+                 "Bodies/block/Release interval=0.5",
+                 "Bodies/block/Initial stress=geostatic"}));
   run_case("a release whose region lies outside the grid",
            with({"Bodies/block/First release=0.01",
                  "Bodies/block/Lower corner=5, 5",

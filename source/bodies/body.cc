@@ -105,6 +105,9 @@ namespace mpm
     geostatic_k0 = prm.get("Initial stress") == "geostatic" ?
                      prm.get_double("K0") :
                      -1.;
+    if (geostatic() && is_inflow())
+      throw InputError(section_path + ": an inflow (First release > 0 or "
+                       "Releases > 1) starts with Initial stress = none.");
     const unsigned int n = prm.get_integer("Points per cell direction");
     if (prm.get("Point placement") == "Gauss")
       placement_1d = QGauss<1>(n);

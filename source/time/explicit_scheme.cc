@@ -176,14 +176,22 @@ namespace mpm
     // the step: the run goes to End time.
     if (this->scene.points.n_global_points() == 0)
       return std::numeric_limits<double>::infinity();
-    const double step = cfl_number * stability_limit(speeds);
+    double step = cfl_number * stability_limit(speeds);
+    // Everything at rest and stress-free (loose fill just released): the
+    // step in which gravity moves a point from rest by the CFL share of a
+    // cell, h CFL = g dt^2 / 2.
+    const double g = this->scene.transfer.gravity_vector().norm();
+    if (speeds.signal == 0. && speeds.point == 0. && g > 0.)
+      step = std::sqrt(2. * cfl_number * this->scene.grid.minimum_cell_size() /
+                       g);
     // Every rank has the same speeds, so every rank throws.
     if (!(step > 0. && std::isfinite(step)))
       throw RunError("The explicit time step is not defined: the largest "
                      "signal speed is " + std::to_string(speeds.signal) +
                      " m/s and the fastest point moves at " +
                      std::to_string(speeds.point) +
-                     " m/s (every point has come apart and rests, or a law "
+                     " m/s (every point has come apart and rests with no "
+                     "gravity, or a law "
                      "overflowed).");
     return step;
   }

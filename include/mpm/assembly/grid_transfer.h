@@ -90,6 +90,12 @@ namespace mpm
                p[Layout::mass] / Layout::current_volume(p, F);
     }
 
+    const Tensor<1, dim> &
+    gravity_vector() const
+    {
+      return gravity;
+    }
+
     /** The time at the start of the step, for conditions that change. */
     void
     set_time(const double t)
