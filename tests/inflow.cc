@@ -12,6 +12,10 @@
 //   1.5) it carries no stress: zero strain energy;
 // - the portions land on the floor and stop there: at the end no point
 //   is below the floor or above the release box;
+// - with the automatic step, the first step after the first release
+//   (everything at rest and stress-free) is the one in which gravity moves
+//   the portion by CFL h: dt = sqrt(CFL h / g), and the portion's lowest
+//   point drops by g dt^2 = CFL h (1e-12);
 // - a release into cells that still hold material is refused (exit 2).
 // 1 and 2 ranks print the same figures.
 
@@ -75,6 +79,26 @@ main(int argc, char **argv)
   mpm_tests::check("at the end the fill lies between the floor and the "
                    "release box",
                    csv["min_y"].back() > 0. && csv["max_y"].back() < 0.95);
+
+  {
+    auto automatic = mpm_tests::run_scene("scenes/inflow.prm",
+                                          "output-inflow-automatic",
+                                          {"Time stepping/Time step=0",
+                                           "Time stepping/End time=0.2"});
+    const double cfl_h = 0.3 * 0.05;
+    // Row 0: t = 0; row 1: the empty grid to the release at 0.05; row 2:
+    // the first step of the portion.
+    // The lowest row of points starts a sixth of a cell above y = 0.85.
+    const double dt   = automatic["dt"][2];
+    const double drop = 0.85 + 0.05 / 6 - automatic["min_y"][2];
+    deallog << "automatic step: empty grid to t = " << automatic["time"][1]
+            << ", then dt = " << dt << " s" << std::endl;
+    mpm_tests::check("automatic step from rest: dt = sqrt(CFL h / g) and "
+                     "the portion drops by CFL h, to 1e-12",
+                     std::abs(automatic["time"][1] - 0.05) < 1e-12 &&
+                       std::abs(dt - std::sqrt(cfl_h / g)) < 1e-12 * dt &&
+                       std::abs(drop - cfl_h) < 1e-12);
+  }
 
   int code = 0;
   mpm_tests::run_scene("scenes/inflow.prm",

@@ -179,11 +179,10 @@ namespace mpm
     double step = cfl_number * stability_limit(speeds);
     // Everything at rest and stress-free (loose fill just released): the
     // step in which gravity moves a point from rest by the CFL share of a
-    // cell, h CFL = g dt^2 / 2.
+    // cell, CFL h = g dt^2 (the explicit update moves it by g dt^2).
     const double g = this->scene.transfer.gravity_vector().norm();
     if (speeds.signal == 0. && speeds.point == 0. && g > 0.)
-      step = std::sqrt(2. * cfl_number * this->scene.grid.minimum_cell_size() /
-                       g);
+      step = std::sqrt(cfl_number * this->scene.grid.minimum_cell_size() / g);
     // Every rank has the same speeds, so every rank throws.
     if (!(step > 0. && std::isfinite(step)))
       throw RunError("The explicit time step is not defined: the largest "
