@@ -250,6 +250,16 @@ main(int argc, char **argv)
            with({"Bodies/block/Releases=2",
                  "Bodies/block/Release interval=0.5",
                  "Bodies/block/Initial stress=geostatic"}));
+  run_case("a release into cells that still hold the last portion",
+           {"--set", "Bodies/portion/Release interval=0.02",
+            "--set", "Output/Write ParaView output=false",
+            "--set", "Output/Directory=output-crowded-release",
+            mpm_tests::source_file("scenes/inflow.prm")});
+  run_case("tracked points in a grid that an inflow fills later",
+           {"--set", "Output/Tracked points=0.5, 0.9",
+            "--set", "Output/Write ParaView output=false",
+            "--set", "Output/Directory=output-tracked-inflow",
+            mpm_tests::source_file("scenes/inflow.prm")});
   run_case("a release whose region lies outside the grid",
            with({"Bodies/block/First release=0.01",
                  "Bodies/block/Lower corner=5, 5",

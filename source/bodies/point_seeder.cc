@@ -67,7 +67,7 @@ namespace mpm
                            "entry empty).");
         bool                occupied = false;
         const std::uint64_t n =
-          bodies[b].release_time(0) > 0. ?
+          bodies[b].is_inflow() ?
             collect_candidates(bodies, {b}, nullptr, occupied).size() :
             1;
         if (Utilities::MPI::sum(n, grid.get_communicator()) == 0)

@@ -452,6 +452,7 @@ namespace mpm
             scheme->points_added();
           scheme->end_next_step_by(seeder->next_release_time(bodies));
         }
+        particle_steps += points->n_global_points();
         dt = scheme->advance(time, step);
         {
           TimerOutput::Scope t(timer, "sort points");
@@ -509,8 +510,7 @@ namespace mpm
     // A continued run reports the steps it took itself.
     const unsigned int steps_taken = step - start_step;
     pcout << "mpm: " << steps_taken << " steps, "
-          << static_cast<double>(points->n_global_points()) * steps_taken /
-               wall /
+          << particle_steps / wall /
                Utilities::MPI::n_mpi_processes(communicator)
           << " particle-steps per second per rank, " << wall
           << " s wall time, peak memory " << peak_memory_mb

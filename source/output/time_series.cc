@@ -50,6 +50,10 @@ namespace mpm
       parse_point_list<dim>(prm.get("Tracked points"), "Output/Tracked points");
     prm.leave_subsection();
 
+    if (!tracked_positions.empty() && points.n_global_points() == 0)
+      throw InputError("Output/Tracked points: no material point is in the "
+                       "grid at the start (an inflow releases its first "
+                       "points later), so there is none to track.");
     // The tracked point is the nearest one; ties go to the smaller id.
     for (const Point<dim> &target : tracked_positions)
       {

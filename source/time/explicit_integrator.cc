@@ -166,7 +166,12 @@ namespace mpm
     kinematics.F_new             = Layout::embed(F_new, 1.);
     kinematics.velocity_gradient = Layout::embed(L, 0.);
     kinematics.dt                = dt;
-    kinematics.density           = transfer.density(support, p, F_new);
+    kinematics.density           = transfer.density(
+      support,
+      p,
+      F_new,
+      materials[static_cast<unsigned int>(p[Layout::material_id])]
+        ->needs_density_from_positions());
     const Material &material =
       PointState<dim>::commit(materials, kinematics, p);
     report.max_signal_speed = std::max(

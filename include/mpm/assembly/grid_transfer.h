@@ -66,8 +66,7 @@ namespace mpm
 
     /**
      * From now on, each projection of the mass also finds the occupied
-     * nodal volumes, and density() is the density from the point
-     * positions.
+     * nodal volumes, for density() from the point positions.
      */
     void
     enable_density_from_positions(const Grid<dim> &grid)
@@ -77,17 +76,19 @@ namespace mpm
 
     /**
      * The density of a point with properties p, support `support` and
-     * deformation gradient F: from the point positions if enabled, else
-     * its mass over its current volume.
+     * deformation gradient F: from the point positions if `from_positions`
+     * (which needs enable_density_from_positions()), else its mass over its
+     * current volume.
      */
     double
     density(const Support<dim> &           support,
             const ArrayView<const double> &p,
-            const Tensor<2, dim> &         F) const
+            const Tensor<2, dim> &         F,
+            const bool                     from_positions) const
     {
-      return nodal_density ?
-               nodal_density->at(support, nodes) :
-               p[Layout::mass] / Layout::current_volume(p, F);
+      Assert(!from_positions || nodal_density, ExcInternalError());
+      return from_positions ? nodal_density->at(support, nodes) :
+                              p[Layout::mass] / Layout::current_volume(p, F);
     }
 
     const Tensor<1, dim> &

@@ -154,6 +154,8 @@ namespace mpm
     /** Time and step this run started from (those of a checkpoint). */
     double           start_time = 0.;
     unsigned int     start_step = 0;
+    /** Points times steps in this part of the run (an inflow adds points). */
+    double           particle_steps = 0.;
     unsigned int     last_progress_decile = 0;
   };
 } // namespace mpm
