@@ -51,9 +51,9 @@ namespace mpm
                       "Ratio of horizontal to vertical stress of the "
                       "geostatic stress; Jaky's 1 - sin(phi) is the usual "
                       "choice for normally consolidated soil.");
-    prm.declare_entry("Density", "", Patterns::Anything(),
+    prm.declare_entry("Density", "0", Patterns::Double(0.),
                       "The bulk density of the body's points [kg/m^3]; "
-                      "empty: its material's Density. Only for a law whose "
+                      "0: its material's Density. Only for a law whose "
                       "stress follows the density (Wieckowski granular: a "
                       "loose portion of 1000 kg/m^3 starts stress-free).");
     prm.declare_entry("First release", "0", Patterns::Double(0.),
@@ -85,16 +85,7 @@ namespace mpm
                   const std::vector<std::string> &material_names)
     : body_name(name)
   {
-    const std::string density_entry = prm.get("Density");
-    if (!density_entry.empty())
-      {
-        bulk_density = parse_number(density_entry,
-                                    section_path + "/Density = '" +
-                                      density_entry + "' is not a number.");
-        if (!(bulk_density > 0.))
-          throw InputError(section_path + "/Density = '" + density_entry +
-                           "' must be positive.");
-      }
+    bulk_density     = prm.get_double("Density");
     first_release    = prm.get_double("First release");
     n_releases       = prm.get_integer("Releases");
     release_interval = prm.get_double("Release interval");

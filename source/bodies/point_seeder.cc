@@ -2,7 +2,6 @@
 
 #include <mpm/bodies/point_seeder.h>
 #include <mpm/base/input_error.h>
-#include <mpm/base/parse.h>
 
 #include <algorithm>
 #include <cmath>
@@ -29,10 +28,6 @@ namespace mpm
     const double                                  time,
     const double                                  tolerance)
   {
-    // The start: what is wrong with a body says so now, not when the body
-    // is due.
-    if (releases_done.empty())
-      check_bodies(bodies, materials);
     releases_done.resize(bodies.size(), 0);
     std::vector<unsigned int> due;
     for (unsigned int b = 0; b < bodies.size(); ++b)
@@ -63,13 +58,13 @@ namespace mpm
                            "/Density: the stress of material '" +
                            material.name() +
                            "' does not follow the density, so its points "
-                           "must have the material's Density (leave the "
-                           "entry empty).");
-        bool                occupied = false;
+                           "must have the material's Density (Density = "
+                           "0).");
+        if (!bodies[b].is_inflow())
+          continue;
+        bool                unused = false;
         const std::uint64_t n =
-          bodies[b].is_inflow() ?
-            collect_candidates(bodies, {b}, nullptr, occupied).size() :
-            1;
+          collect_candidates(bodies, {b}, nullptr, unused).size();
         if (Utilities::MPI::sum(n, grid.get_communicator()) == 0)
           throw InputError("Bodies/" + bodies[b].name() +
                            ": the region of this inflow holds no point "
@@ -103,9 +98,10 @@ namespace mpm
       {
         std::ostringstream message;
         message << "Bodies: a release of " << body_names(bodies, which)
-                << " is due at t = " << time << ", but material still lies in the cells of its "
-                   "region. Release less often (Release interval), or "
-                   "move the region away from where the material gathers.";
+                << " is due at t = " << time
+                << ", but material still lies in the cells of its region. "
+                   "Release less often (Release interval), or move the "
+                   "region away from where the material gathers.";
         throw InputError(message.str());
       }
     const std::uint64_t n_local  = candidates.size();

@@ -204,6 +204,7 @@ namespace mpm
                                                    scheme_name != "explicit");
     points->parse_outflow(prm);
     seeder = std::make_unique<PointSeeder<dim>>(*grid);
+    seeder->check_bodies(bodies, materials);
     seeder->release_due(bodies, materials, *points, 0., 0.);
     seeder->apply_geostatic_stress(bodies, materials, gravity, *points);
     loads = std::make_unique<PointLoads<dim>>(prm,

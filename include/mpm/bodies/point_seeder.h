@@ -52,6 +52,15 @@ namespace mpm
                 const double                                  time,
                 const double                                  tolerance);
 
+    /**
+     * Bad input of the bodies that is cheaper to find at the start than
+     * when a body is due: a Density that the law does not follow, an
+     * inflow whose region misses the grid. Throws on every rank.
+     */
+    void
+    check_bodies(const std::vector<Body<dim>> &                bodies,
+                 const std::vector<std::unique_ptr<Material>> &materials) const;
+
     /** The time of the next release due after the ones done (inf: none). */
     double
     next_release_time(const std::vector<Body<dim>> &bodies) const;
@@ -100,14 +109,6 @@ namespace mpm
                        const std::vector<unsigned int> &       which,
                        const Particles::ParticleHandler<dim> * present,
                        bool &                                  occupied) const;
-
-    /**
-     * Bad input of the bodies, found at the start: a Density that the law
-     * does not follow, an inflow whose region misses the grid.
-     */
-    void
-    check_bodies(const std::vector<Body<dim>> &                bodies,
-                 const std::vector<std::unique_ptr<Material>> &materials) const;
 
     /** Seed the bodies `which` (indices into `bodies`) at `time`. */
     void
