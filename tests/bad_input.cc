@@ -155,8 +155,9 @@ main(int argc, char **argv)
                  "Boundary conditions/Friction boundaries=bottom: 0.3"}));
   run_case("unknown friction boundary",
            with({"Boundary conditions/Friction boundaries=floor: 0.3"}));
-  run_case("friction boundary with the quasi-static scheme",
+  run_case("friction boundary with a meshfree method",
            with({"Time stepping/Scheme=quasi-static",
+                 "Method=GMM-MLS",
                  "Boundary conditions/Fixed boundaries=",
                  "Boundary conditions/Friction boundaries=bottom: 0.3"}));
   run_case("obstacle outside the grid",

@@ -20,8 +20,23 @@
 //   normal force (the end nodes of the floor carry half a cell of it);
 // - the block thrown up off the floor (initial velocity 0.5, 2 m/s): the
 //   one-sided wall lets it go, so its momentum is M (v0 + g t) to the 12
-//   digits of the time series, as in free flight; a slip floor, which holds the block's
-//   bottom nodes, does not let it go.
+//   digits of the time series, as in free flight; a slip floor, which holds
+//   the block's bottom nodes, does not let it go;
+// - the same with the implicit Newmark scheme (Bossak alpha = -0.3, whose
+//   damping settles the block as pure PIC does explicitly; dt = 5 ms, 100
+//   steps), where the active set finds the nodes that stick and slide:
+//   the same rigid-block law within 1 %, against the slip and fixed
+//   floors; mu = 0.7 sticks; |T| <= mu N at every step and node, and
+//   |T| = mu N where the block slides (to Newton's tolerance); thrown up,
+//   the block's momentum is that of the same block with no floor (the
+//   Newmark start differs from M (v0 + g t)), and a slip floor misses it;
+// - quasi-static, a block pressed onto a rough base (prm/rough_base.prm,
+//   mu = 0.3, half model with a slip wall on the axis): the base carries
+//   the load, p B (vertical equilibrium); Coulomb at every node; near the
+//   axis the base sticks (|t_T| < mu t_N / 2) and at the free edge the
+//   Poisson expansion slides it (|t_T| = mu t_N); on a frictionless base
+//   (mu = 0) no shear at all, and the block spreads wider than on the
+//   rough one.
 
 #include <deal.II/base/mpi.h>
 
@@ -101,12 +116,19 @@ namespace
 
 
 
-  /** Check the traction files of a run; returns the number of files. */
+  /**
+   * Check the traction files of a run; returns the number of files. The
+   * Coulomb bound holds to `round_off` of the largest traction: 1e-12
+   * for the explicit law, which sets it exactly; Newton's tolerance for
+   * the implicit one, where |T| = mu N at a sliding node holds as the
+   * node's balance does.
+   */
   unsigned int
-  check_tractions(const std::string &directory,
-                  const double       mu,
-                  const bool         slides,
-                  mpm_tests::Columns &series)
+  check_tractions(const std::string & directory,
+                  const double        mu,
+                  const bool          slides,
+                  mpm_tests::Columns &series,
+                  const double        round_off = 1e-12)
   {
     unsigned int files = 0;
     bool         bound = true, slip = true, integral = true;
@@ -128,7 +150,7 @@ namespace
           {
             const double n  = t["normal_traction"][k];
             const double tt = std::abs(t["tangential_traction"][k]);
-            bound &= n >= 0. && tt <= mu * n + 1e-12 * largest;
+            bound &= n >= 0. && tt <= mu * n + round_off * largest;
             if (slides && n > 1e-6 * largest)
               slip &= std::abs(tt - mu * n) <= 1e-9 * largest;
             const bool end = t["x"][k] < 1e-12 || t["x"][k] > 2. - 1e-12;
@@ -151,6 +173,180 @@ namespace
                      "normal force of the time series",
                      integral);
     return files;
+  }
+
+
+  /** The Newmark runs: the same laws, solved by the active set. */
+  void
+  check_newmark()
+  {
+    const std::vector<std::string> newmark = {"Time stepping/Scheme=Newmark",
+                                              "Time stepping/Time step=0.005",
+                                              "Newmark/Bossak alpha=-0.3"};
+    const auto with = [&](const std::vector<std::string> &more) {
+      std::vector<std::string> settings = newmark;
+      settings.insert(settings.end(), more.begin(), more.end());
+      return settings;
+    };
+    const double exact = g * (std::sin(theta) - 0.2 * std::cos(theta));
+
+    auto         slide = run("newmark_slide", with({}));
+    const double a     = acceleration_along_plane(slide);
+    double       bound = 0., slip_gap = 0.;
+    for (unsigned int n = 1; n < slide["time"].size(); ++n)
+      {
+        const double N = slide["bottom_normal_force"][n];
+        const double T = std::abs(slide["bottom_tangential_force"][n]);
+        bound          = std::max(bound, T - 0.2 * N);
+        slip_gap       = std::max(slip_gap, std::abs(T - 0.2 * N) / N);
+      }
+    deallog << "Newmark, mu = 0.2: a / (g (sin - mu cos)) = " << a / exact
+            << "; largest |T - mu N| / N "
+            << (slip_gap < 1e-9 ? "below 1e-9" : std::to_string(slip_gap))
+            << std::endl;
+    mpm_tests::check("Newmark, mu = 0.2: the block slides with g (sin 30 - "
+                     "mu cos 30) within 1 %",
+                     std::abs(a / exact - 1.) < 0.01);
+    mpm_tests::check("Newmark, mu = 0.2: |T| = mu N at every step while it "
+                     "slides, to 1e-9",
+                     bound < 1e-9 * slide["mass"][0] * g && slip_gap < 1e-9);
+    check_tractions("output-newmark_slide", 0.2, true, slide, 1e-9);
+
+    auto slip  = run("newmark_frictionless",
+                    with({"Boundary conditions/Friction boundaries=",
+                          "Boundary conditions/Slip boundaries=bottom"}));
+    auto fixed = run("newmark_fixed",
+                     with({"Boundary conditions/Friction boundaries=",
+                           "Boundary conditions/Fixed boundaries=bottom"}));
+    const double a_slip  = acceleration_along_plane(slip);
+    const double a_fixed = acceleration_along_plane(fixed);
+    deallog << "Newmark, slip floor: a / (g sin 30) = " << a_slip / (g * 0.5)
+            << "; fixed floor: a / (g (sin - mu cos)) = " << a_fixed / exact
+            << std::endl;
+    mpm_tests::check("Newmark: the slip and fixed floors miss the Coulomb "
+                     "law by more than 10 %",
+                     std::abs(a_slip / exact - 1.) > 0.1 &&
+                       std::abs(a_fixed / exact - 1.) > 0.1);
+
+    auto stick =
+      run("newmark_stick",
+          with({"Boundary conditions/Friction boundaries=bottom: 0.7"}));
+    double travel = 0.;
+    bound         = 0.;
+    for (unsigned int n = 0; n < stick["time"].size(); ++n)
+      {
+        travel = std::max(travel,
+                          std::abs(stick["centre_of_mass_x"][n] -
+                                   stick["centre_of_mass_x"][0]));
+        bound  = std::max(bound,
+                         std::abs(stick["bottom_tangential_force"][n]) -
+                           0.7 * stick["bottom_normal_force"][n]);
+      }
+    deallog << "Newmark, mu = 0.7: largest travel " << travel << " m"
+            << std::endl;
+    mpm_tests::check("Newmark, mu = 0.7: the block sticks, |x - x0| < 1e-4 "
+                     "m, and |T| <= mu N at every step",
+                     travel < 1e-4 && bound < 1e-9 * stick["mass"][0] * g);
+    check_tractions("output-newmark_stick", 0.7, false, stick, 1e-9);
+
+    // Thrown up: against the same block with no floor at all.
+    const std::vector<std::string> thrown = {
+      "Bodies/block/Initial velocity=0.5; 2", "Time stepping/End time=0.2"};
+    auto flight = run("newmark_flight",
+                      with({thrown[0], thrown[1],
+                            "Boundary conditions/Friction boundaries="}));
+    for (const bool one_sided : {true, false})
+      {
+        auto csv = run(one_sided ? "newmark_thrown" : "newmark_thrown_slip",
+                       with({thrown[0], thrown[1],
+                             one_sided ?
+                               "Boundary conditions/Friction boundaries="
+                               "bottom: 0.5" :
+                               "Boundary conditions/Friction boundaries=",
+                             one_sided ?
+                               "Boundary conditions/Slip boundaries=" :
+                               "Boundary conditions/Slip boundaries="
+                               "bottom"}));
+        const double M   = csv["mass"][0];
+        double       gap = 0.;
+        for (unsigned int n = 0; n < csv["time"].size(); ++n)
+          for (const char *column : {"momentum_x", "momentum_y"})
+            gap = std::max(gap,
+                           std::abs(csv[column][n] - flight[column][n]) /
+                             (M * 2.));
+        deallog << "Newmark, " << (one_sided ? "friction" : "slip")
+                << " floor: momentum off the flight without a floor by "
+                << (gap < 1e-10 ? "less than 1e-10" : std::to_string(gap))
+                << " M v0" << std::endl;
+        if (one_sided)
+          mpm_tests::check("Newmark, thrown up: the friction floor lets the "
+                           "block go (momentum of the flight to 1e-10)",
+                           gap < 1e-10);
+        else
+          mpm_tests::check("Newmark, thrown up: a slip floor holds it back "
+                           "(more than 1 % off the flight)",
+                           gap > 0.01);
+      }
+  }
+
+
+  /** A block pressed onto a rough and a frictionless base. */
+  void
+  check_quasi_static()
+  {
+    const double p = 1e5, B = 1., mu = 0.3;
+    const auto   run_base = [](const std::string &name, const std::string &mu) {
+      if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+        std::filesystem::remove_all("output-" + name);
+      MPI_Barrier(MPI_COMM_WORLD);
+      return mpm_tests::run_scene(
+        "../prm/rough_base.prm",
+        "output-" + name,
+        {"Boundary conditions/Friction boundaries=bottom: " + mu});
+    };
+    auto rough = run_base("rough_base", "0.3");
+    auto smooth = run_base("smooth_base", "0");
+    const unsigned int last = rough["time"].size() - 1;
+    deallog << "quasi-static, rough base: normal force / (p B) = "
+            << rough["bottom_normal_force"][last] / (p * B) << std::endl;
+    mpm_tests::check("quasi-static: the base carries p B (1e-8)",
+                     std::abs(rough["bottom_normal_force"][last] / (p * B) -
+                              1.) < 1e-8 &&
+                       std::abs(smooth["bottom_normal_force"][last] /
+                                  (p * B) -
+                                1.) < 1e-8);
+    check_tractions("output-rough_base", mu, false, rough, 1e-9);
+
+    // The last traction file: stick near the axis, slip at the edge.
+    const std::string step =
+      std::to_string(static_cast<unsigned int>(rough["step"][last]));
+    const std::string file = "bottom_tractions_" +
+                             std::string(6 - step.size(), '0') + step +
+                             ".csv";
+    mpm_tests::Columns t = mpm_tests::read_csv("output-rough_base/" + file);
+    mpm_tests::Columns t0 = mpm_tests::read_csv("output-smooth_base/" + file);
+    bool   sticks = false, slides = false, no_shear = true;
+    for (unsigned int k = 0; k < t["x"].size(); ++k)
+      {
+        const double x  = t["x"][k];
+        const double n  = t["normal_traction"][k];
+        const double tt = std::abs(t["tangential_traction"][k]);
+        if (std::abs(x - 0.05) < 1e-9)
+          sticks = tt > 0. && tt < 0.5 * mu * n;
+        if (std::abs(x - 0.9) < 1e-9)
+          slides = std::abs(tt - mu * n) < 1e-9 * p;
+        no_shear &= std::abs(t0["tangential_traction"][k]) < 1e-9 * p;
+      }
+    deallog << "quasi-static: right edge of the block " << rough["max_x"][last]
+            << " m on the rough base, " << smooth["max_x"][last]
+            << " m on the frictionless one" << std::endl;
+    mpm_tests::check("quasi-static, rough base: it sticks near the axis "
+                     "(0 < |t_T| < mu t_N / 2 at x = 0.05) and slides at "
+                     "the edge (|t_T| = mu t_N at x = 0.9)",
+                     sticks && slides);
+    mpm_tests::check("quasi-static, frictionless base: no shear (1e-9 p), "
+                     "and the block spreads wider than on the rough base",
+                     no_shear && smooth["max_x"][last] > rough["max_x"][last]);
   }
 } // namespace
 
@@ -245,6 +441,9 @@ main(int argc, char **argv)
                      momentum_balance(csv) < 1e-9);
     check_tractions("output-stick", 0.7, false, csv);
   }
+
+  check_newmark();
+  check_quasi_static();
 
   // Thrown up off the floor, without and with a one-sided wall.
   for (const bool one_sided : {true, false})

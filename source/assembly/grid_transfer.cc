@@ -186,11 +186,15 @@ namespace mpm
         double *     v = nodes.values_of(node);
         const double m = v[NodalLayout::mass];
         double *     a = v + NodalLayout::force;
+        double velocity[dim];
         for (unsigned int d = 0; d < dim; ++d)
-          a[d] = m > 0. ? a[d] / m : 0.;
+          {
+            a[d]        = m > 0. ? a[d] / m : 0.;
+            velocity[d] = m > 0. ? v[NodalLayout::velocity + d] / m : 0.;
+          }
         for (const NodalCondition<dim> *condition : conditions)
           if (condition->acts_on(node))
-            condition->constrain_velocity(node, a);
+            condition->constrain_initial_acceleration(node, velocity, a);
       }
   }
 

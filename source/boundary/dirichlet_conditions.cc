@@ -231,14 +231,14 @@ namespace mpm
   DirichletConditions<dim>::add_constraints(
     const unsigned int                              node,
     const std::array<types::global_dof_index, dim> &dofs,
-    const bool                                      held,
+    const Hold *                                    holds,
     AffineConstraints<double> &                     constraints) const
   {
     const Constraint &constraint = *constraint_of(node);
     // A free contact node keeps no slip along the wall, which a body
     // rolling without slip satisfies on the whole line of the wall; only
     // its normal motion is free.
-    const bool free_contact = constraint.unilateral && !held;
+    const bool free_contact = constraint.unilateral && holds[0] == Hold::free;
     if (free_contact || constraint.n_normals == dim)
       {
         for (unsigned int a = 0; a < dim; ++a)
@@ -249,29 +249,12 @@ namespace mpm
       }
     bool supported = true;
     for (unsigned int k = 0; k < constraint.n_normals; ++k)
-      {
-        const Tensor<1, dim> &n     = constraint.normals[k];
-        unsigned int          pivot = 0;
-        for (unsigned int a = 1; a < dim; ++a)
-          if (std::abs(n[a]) > std::abs(n[pivot]))
-            pivot = a;
-        if (constraints.is_constrained(dofs[pivot]))
-          continue;
-        const bool along_axis = std::abs(std::abs(n[pivot]) - 1.) < 1e-12;
-        if (!along_axis && constraint.n_normals > 1)
-          {
-            supported = false;
-            continue;
-          }
-        constraints.add_line(dofs[pivot]);
-        if (!along_axis)
-          for (unsigned int a = 0; a < dim; ++a)
-            if (a != pivot)
-              constraints.add_entry(dofs[pivot], dofs[a], -n[a] / n[pivot]);
-      }
+      supported &= this->hold_along_normal(dofs,
+                                           constraint.normals[k],
+                                           constraint.n_normals == 1,
+                                           constraints);
     return supported;
   }
-
 
 
 

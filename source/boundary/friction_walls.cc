@@ -29,7 +29,7 @@ namespace mpm
       "the material only while it presses (it may lift off) and resists "
       "sliding up to mu times the normal force. mu = 0 is a frictionless "
       "one-sided wall, mu = inf one on which the material cannot slide. "
-      "Explicit scheme only. The forces on each wall go into the time "
+      "Explicit, quasi-static and Newmark schemes, with MPM. The forces on each wall go into the time "
       "series, and its tractions into <name>_tractions_<step>.csv at each "
       "output time. 'name: mu until t' ends the wall at time t.");
     prm.leave_subsection();
@@ -189,11 +189,36 @@ namespace mpm
 
   template <int dim>
   void
+  FrictionWalls<dim>::constrain_initial_acceleration(
+    const unsigned int node,
+    const double *     velocity,
+    double *           acceleration) const
+  {
+    for (unsigned int c = first_contact[node]; c < first_contact[node + 1];
+         ++c)
+      {
+        const Tensor<1, dim> &n   = contacts[c].outward;
+        double                v_n = 0., a_n = 0.;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            v_n += velocity[d] * n[d];
+            a_n += acceleration[d] * n[d];
+          }
+        if (!(v_n < 0.) && a_n > 0.)
+          for (unsigned int d = 0; d < dim; ++d)
+            acceleration[d] -= a_n * n[d];
+      }
+  }
+
+
+
+  template <int dim>
+  void
   FrictionWalls<dim>::begin_explicit_solve(const double time,
                                            const double) const
   {
     solve_time = time;
-    std::fill(reactions.begin(), reactions.end(), Reaction());
+    reset_reactions();
   }
 
 
@@ -231,6 +256,27 @@ namespace mpm
             acceleration[d] = 0.;
           }
       }
+  }
+
+
+
+  template <int dim>
+  bool
+  FrictionWalls<dim>::add_constraints(
+    const unsigned int                              node,
+    const std::array<types::global_dof_index, dim> &dofs,
+    const Hold *                                    holds,
+    AffineConstraints<double> &                     constraints) const
+  {
+    const unsigned int n_walls = n_unilateral_walls(node);
+    bool               supported = true;
+    for (unsigned int k = 0; k < n_walls; ++k)
+      if (holds[k] == Hold::stick)
+        this->hold_all(dofs, constraints);
+      else if (holds[k] == Hold::slip)
+        supported &= this->hold_along_normal(
+          dofs, unilateral_normal(node, k), n_walls == 1, constraints);
+    return supported;
   }
 
 

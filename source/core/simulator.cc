@@ -154,12 +154,10 @@ namespace mpm
         scheme_name != "explicit")
       throw InputError("Boundary conditions: a wall that ends ('name until "
                        "t') needs Time stepping/Scheme = explicit.");
-    if (!friction_walls->empty() && scheme_name != "explicit")
-      throw InputError("Boundary conditions/Friction boundaries act in the "
-                       "explicit scheme (Time stepping/Scheme = explicit); "
-                       "with the quasi-static and Newmark schemes use "
-                       "Contact boundaries (no slip where the material "
-                       "presses) or Slip boundaries.");
+    if (!friction_walls->empty() && method != "MPM")
+      throw InputError("Boundary conditions/Friction boundaries act with "
+                       "Method = MPM; the meshfree methods take Fixed, Slip "
+                       "and Contact boundaries.");
     obstacles =
       std::make_unique<RigidObstacles<dim>>(prm, names.obstacles, *grid);
     if (!obstacles->empty() && scheme_name != "explicit")

@@ -4,11 +4,15 @@
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/lac/sparsity_tools.h>
+#include <deal.II/lac/vector.h>
 
 #include <mpm/base/input_error.h>
 #include <mpm/time/grid_system.h>
 
+#include <array>
 #include <cmath>
+#include <set>
+#include <tuple>
 
 namespace mpm
 {
@@ -74,17 +78,23 @@ namespace mpm
     DoFTools::extract_locally_relevant_dofs(dof_handler, state.relevant_dofs);
 
     // Contact nodes stay engaged into the new step only while material
-    // still touches them.
+    // still touches them. The first step holds every node that material
+    // touches, so that a body put on a wall rests on it from the first
+    // solve (a quasi-static step needs it); its solve releases those that
+    // pull. Later steps engage where material closes on a wall.
     if (has_active_set())
       {
         const TrilinosWrappers::MPI::Vector touching =
           contact_gaps(state, false);
-        for_each_contact_node(
-          [&](const unsigned int node, const types::global_dof_index dof0,
-              const auto &) {
-            if (touching(dof0) == 0.)
-              contact.let_go(node, 0);
-          });
+        const bool first_step = !contact.has_started();
+        for_each_contact_node([&](const ContactPair &pair) {
+          if (touching(pair.dof0 + pair.wall) == 0.)
+            contact.let_go(pair.node, pair.wall);
+          else if (first_step)
+            contact.hold_from_start(pair.node,
+                                    pair.wall,
+                                    pair.friction == 0.);
+        });
       }
     make_constraints(state);
 
@@ -163,26 +173,55 @@ namespace mpm
     // normal displacement vanishes.
     state.constraints.clear();
     state.constraints.reinit(state.relevant_dofs);
-    bool unsupported_corner = false;
+    state.sliding_nodes.clear();
+    bool              unsupported_corner = false;
+    std::vector<Hold> holds;
+    // A node is met once per cell around it.
+    std::set<std::pair<unsigned int, unsigned int>> slides_found;
+    const auto first_visit = [&](const unsigned int node,
+                              const unsigned int wall) {
+      return slides_found.insert({node, wall}).second;
+    };
     DoFTools::make_hanging_node_constraints(dof_handler, state.constraints);
-    for_each_constrained_vertex([&](const auto &                cell,
-                                    const unsigned int          v,
-                                    const unsigned int          node,
-                                    const NodalCondition<dim> &condition) {
+    for_each_constrained_vertex([&](const auto &               cell,
+                                    const unsigned int         v,
+                                    const unsigned int         node,
+                                    const NodalCondition<dim> &condition,
+                                    const unsigned int         first_wall) {
       std::array<types::global_dof_index, dim> dofs;
       for (unsigned int a = 0; a < dim; ++a)
         dofs[a] = cell->vertex_dof_index(v, a, 0);
+      holds.resize(condition.n_unilateral_walls(node));
+      for (unsigned int k = 0; k < holds.size(); ++k)
+        {
+          const unsigned int wall = first_wall + k;
+          const std::array<double, 3> *direction =
+            contact.slide_direction(node, wall);
+          holds[k] = !contact.holds(node, wall) ? Hold::free :
+                     direction != nullptr       ? Hold::slip :
+                                                  Hold::stick;
+          const double friction = condition.friction_coefficient(node, k);
+          if (holds[k] == Hold::slip && friction > 0. && first_visit(node, wall))
+            {
+              typename ImplicitState<dim>::SlidingNode sliding;
+              sliding.outward  = condition.unilateral_normal(node, k);
+              sliding.friction = friction;
+              for (unsigned int a = 0; a < dim; ++a)
+                sliding.direction[a] = (*direction)[a];
+              state.sliding_nodes.emplace(dofs[0], sliding);
+            }
+        }
       if (!condition.add_constraints(
-            node, dofs, contact.holds(node, 0), state.constraints))
+            node, dofs, holds.data(), state.constraints))
         unsupported_corner = true;
     });
     // Decided on all ranks together, so that all stop.
     if (Utilities::MPI::logical_or(unsupported_corner,
                                    this->points.get_communicator()))
       throw RunError("Boundary conditions: the implicit schemes support "
-                     "corners between slip walls only when the walls are "
-                     "aligned with the axes, and material reached such a "
-                     "corner.");
+                     "corners between slip or friction walls only when the "
+                     "walls are aligned with the axes, and material reached "
+                     "such a corner.");
     state.constraints.close();
   }
 
@@ -191,19 +230,42 @@ namespace mpm
   template <int dim>
   template <typename Function>
   void
-  GridSystem<dim>::for_each_constrained_vertex(const Function &f) const
+  GridSystem<dim>::for_each_constrained_vertex(const Function &f,
+                                               const bool with_ghosts) const
   {
     for (const auto &cell : dof_handler.active_cell_iterators())
       {
-        if (!cell->is_locally_owned() || cell->active_fe_index() != 0)
+        if (!(cell->is_locally_owned() || (with_ghosts && cell->is_ghost())) ||
+            cell->active_fe_index() != 0)
           continue;
+        // Grid::node_of knows owned cells only; a ghost cell's nodes are
+        // found through the node numbering (its relevant dofs).
+        const typename DoFHandler<dim>::active_cell_iterator node_cell(
+          &cell->get_triangulation(),
+          cell->level(),
+          cell->index(),
+          &grid.node_numbering());
         for (const unsigned int v : cell->vertex_indices())
           {
             const unsigned int node =
-              grid.node_of(cell->active_cell_index(), v);
+              cell->is_locally_owned() ?
+                grid.node_of(cell->active_cell_index(), v) :
+                grid.node_of_dof(node_cell->vertex_dof_index(v, 0));
+            // The unilateral walls of a node are numbered across the
+            // conditions, in their order.
+            unsigned int first_wall = 0;
             for (const NodalCondition<dim> *condition : conditions)
               if (condition->acts_on(node))
-                f(cell, v, node, *condition);
+                {
+                  f(cell, v, node, *condition, first_wall);
+                  first_wall += condition->n_unilateral_walls(node);
+                }
+            if (first_wall > dim)
+              throw RunError("Boundary conditions: a node of the grid lies "
+                             "on more than " + std::to_string(dim) +
+                             " walls that hold the material only while it "
+                             "presses, which the implicit schemes cannot "
+                             "hold.");
           }
       }
   }
@@ -213,17 +275,42 @@ namespace mpm
   template <int dim>
   template <typename Function>
   void
-  GridSystem<dim>::for_each_contact_node(const Function &f) const
+  GridSystem<dim>::for_each_contact_node(const Function &f,
+                                         const bool      with_ghosts) const
   {
-    std::set<unsigned int> visited;
-    for_each_constrained_vertex([&](const auto &                cell,
-                                    const unsigned int          v,
-                                    const unsigned int          node,
-                                    const NodalCondition<dim> &condition) {
-      const Tensor<1, dim> *outward = condition.unilateral_normal(node);
-      if (outward != nullptr && visited.insert(node).second)
-        f(node, cell->vertex_dof_index(v, 0, 0), *outward);
-    });
+    std::set<std::pair<unsigned int, unsigned int>> visited;
+    for_each_constrained_vertex(
+      [&](const auto &               cell,
+          const unsigned int         v,
+          const unsigned int         node,
+          const NodalCondition<dim> &condition,
+          const unsigned int         first_wall) {
+        for (unsigned int k = 0; k < condition.n_unilateral_walls(node); ++k)
+          if (visited.insert({node, first_wall + k}).second)
+            f(ContactPair{node,
+                          first_wall + k,
+                          cell->vertex_dof_index(v, 0, 0),
+                          condition.unilateral_normal(node, k),
+                          condition.friction_coefficient(node, k),
+                          at_corner(node)});
+      },
+      with_ghosts);
+  }
+
+
+
+  template <int dim>
+  bool
+  GridSystem<dim>::at_corner(const unsigned int node) const
+  {
+    unsigned int n_conditions = 0, n_walls = 0;
+    for (const NodalCondition<dim> *condition : conditions)
+      if (condition->acts_on(node))
+        {
+          ++n_conditions;
+          n_walls += condition->n_unilateral_walls(node);
+        }
+    return n_conditions > 1 || n_walls > 1;
   }
 
 
@@ -245,18 +332,22 @@ namespace mpm
       {
         if (!cell->is_locally_owned() || cell->active_fe_index() != 0)
           continue;
-        // (vertex, outward normal of its unilateral wall)
-        std::vector<std::pair<unsigned int, const Tensor<1, dim> *>>
+        // (vertex, wall, outward normal of the wall)
+        std::vector<std::tuple<unsigned int, unsigned int,
+                               const Tensor<1, dim> *>>
           contact_vertices;
         for (const unsigned int v : cell->vertex_indices())
           {
             const unsigned int node =
               grid.node_of(cell->active_cell_index(), v);
+            unsigned int wall = 0;
             for (const NodalCondition<dim> *condition : conditions)
               if (condition->acts_on(node))
-                if (const Tensor<1, dim> *outward =
-                      condition->unilateral_normal(node))
-                  contact_vertices.emplace_back(v, outward);
+                for (unsigned int k = 0;
+                     k < condition->n_unilateral_walls(node);
+                     ++k, ++wall)
+                  contact_vertices.emplace_back(
+                    v, wall, &condition->unilateral_normal(node, k));
           }
         if (contact_vertices.empty())
           continue;
@@ -277,13 +368,16 @@ namespace mpm
                     x[a] += support.N[i] *
                             state.displacement_ghosted(dofs[i * dim + a]);
               }
-            for (const auto &[v, outward] : contact_vertices)
+            for (const auto &[v, wall, outward] : contact_vertices)
               {
                 const double gap_before =
                   (cell->vertex(v) - particle.get_location()) * *outward;
                 const double gap = (cell->vertex(v) - x) * *outward;
-                if (gap < reach && (!after_solve || gap < gap_before))
-                  flags(cell->vertex_dof_index(v, 0, 0)) += 1.;
+                // A point seeded on a wall lies half its spacing from
+                // it: touching, whatever the round-off of the volume.
+                if (gap < (1. + 1e-9) * reach &&
+                    (!after_solve || gap < gap_before))
+                  flags(cell->vertex_dof_index(v, 0, 0) + wall) += 1.;
               }
           }
       }
@@ -304,37 +398,168 @@ namespace mpm
     const MPI_Comm                      comm = this->points.get_communicator();
     const TrilinosWrappers::MPI::Vector residual_at_nodes =
       state.wall_reactions(comm);
-    unsigned int released = 0, engaged = 0;
+    // released, engaged, started sliding, stopped sliding, turned (3D)
+    std::vector<unsigned int> changes(5, 0);
     const TrilinosWrappers::MPI::Vector closing = contact_gaps(state, true);
     // Ranks that share a node see the same ghosted values and so decide
     // alike; each node is counted by the owner of its first dof.
-    for_each_contact_node([&](const unsigned int            node,
-                              const types::global_dof_index dof0,
-                              const Tensor<1, dim> &        outward) {
-      if (contact.has_changed(node, 0))
-        return;
-      const bool counted = state.owned_dofs.is_element(dof0);
-      if (contact.holds(node, 0))
+    for_each_contact_node([&](const ContactPair &pair) {
+      const unsigned int node = pair.node, wall = pair.wall;
+      const unsigned int counted = state.owned_dofs.is_element(pair.dof0);
+      if (!contact.holds(node, wall))
         {
-          // The wall force on the material is minus the out-of-balance
-          // force; it pulls when it points out of the grid.
-          double pull = 0.;
-          for (unsigned int a = 0; a < dim; ++a)
-            pull -= residual_at_nodes(dof0 + a) * outward[a];
-          if (contact.release_if_pulling(node, 0, pull))
-            released += counted;
+          // An engaged node slides on as it moved along the wall in the
+          // free step (the next solve sticks it where friction holds it),
+          // and on a frictionless wall always.
+          if (!(closing(pair.dof0 + wall) > 0.))
+            return;
+          const Tensor<1, dim> slide =
+            sliding_increment(state, pair.dof0, pair.outward);
+          const bool slides =
+            pair.friction == 0. || (!std::isinf(pair.friction) &&
+                                    !pair.corner && slide.norm() > 0.);
+          if (contact.engage(node,
+                             wall,
+                             slides,
+                             slide.norm() > 0. ?
+                               as_direction(slide / slide.norm()) :
+                               std::array<double, 3>{}))
+            changes[1] += counted;
+          return;
         }
-      else if (closing(dof0) > 0. && contact.engage(node, 0))
-        engaged += counted;
+      // The out-of-balance force is what the wall takes: the force of
+      // the material on it. Pressing is its part along the outward normal;
+      // the wall pulls where that is negative.
+      Tensor<1, dim> force;
+      for (unsigned int a = 0; a < dim; ++a)
+        force[a] = residual_at_nodes(pair.dof0 + a);
+      const double pressing = force * pair.outward;
+      if (contact.release_if_pulling(node, wall, -pressing))
+        {
+          changes[0] += counted;
+          return;
+        }
+      // At a corner the force along one wall is the other wall's: the
+      // node sticks.
+      if (!(pair.friction > 0.) || std::isinf(pair.friction) || pair.corner)
+        return;
+      const Tensor<1, dim>         along     = force - pressing * pair.outward;
+      const std::array<double, 3> *direction =
+        contact.slide_direction(node, wall);
+      if (direction == nullptr)
+        {
+          // Stuck: it slides where the wall cannot hold the drag.
+          if (along.norm() > pair.friction * pressing &&
+              contact.start_sliding(node, wall,
+                                    as_direction(along / along.norm())))
+            changes[2] += counted;
+          return;
+        }
+      // Sliding: it sticks where the step would take it backwards; in 3D
+      // the direction follows the motion along the wall, and the step is
+      // solved again with it (the tangent keeps the direction fixed).
+      const Tensor<1, dim> slide =
+        sliding_increment(state, pair.dof0, pair.outward);
+      Tensor<1, dim> s;
+      for (unsigned int a = 0; a < dim; ++a)
+        s[a] = (*direction)[a];
+      if (slide * s < 0.)
+        {
+          if (contact.stop_sliding(node, wall))
+            changes[3] += counted;
+        }
+      else if (dim == 3 && slide.norm() > 0.)
+        {
+          const Tensor<1, dim> unit = slide / slide.norm();
+          if ((unit - s).norm() > 1e-6)
+            {
+              contact.turn(node, wall, as_direction(unit));
+              changes[4] += counted;
+            }
+        }
     });
-    released = Utilities::MPI::sum(released, comm);
-    engaged  = Utilities::MPI::sum(engaged, comm);
-    if (released + engaged == 0)
+    Utilities::MPI::sum(changes, comm, changes);
+    if (changes[0] + changes[1] + changes[2] + changes[3] + changes[4] == 0)
       return false;
-    pcout << "    contact: " << released << " node(s) released, " << engaged
-          << " engaged" << std::endl;
+    pcout << "    contact: " << changes[0] << " node(s) released, "
+          << changes[1] << " engaged";
+    if (changes[2] + changes[3] + changes[4] > 0)
+      pcout << ", " << changes[2] << " slide, " << changes[3] << " stick, "
+            << changes[4] << " turn";
+    pcout << std::endl;
     make_constraints(state);
     return true;
+  }
+
+
+
+  template <int dim>
+  Tensor<1, dim>
+  GridSystem<dim>::sliding_increment(const ImplicitState<dim> &    state,
+                                     const types::global_dof_index dof0,
+                                     const Tensor<1, dim> &        outward)
+  {
+    Tensor<1, dim> du;
+    for (unsigned int a = 0; a < dim; ++a)
+      du[a] = state.displacement_ghosted(dof0 + a);
+    return du - (du * outward) * outward;
+  }
+
+
+
+  template <int dim>
+  std::array<double, 3>
+  GridSystem<dim>::as_direction(const Tensor<1, dim> &unit)
+  {
+    std::array<double, 3> direction{};
+    for (unsigned int a = 0; a < dim; ++a)
+      direction[a] = unit[a];
+    return direction;
+  }
+
+
+
+  template <int dim>
+  void
+  GridSystem<dim>::finish_step(const ImplicitState<dim> &state)
+  {
+    contact.mark_started();
+    for (const NodalCondition<dim> *condition : conditions)
+      condition->reset_reactions();
+    if (!has_active_set())
+      return;
+    const TrilinosWrappers::MPI::Vector residual_at_nodes =
+      state.wall_reactions(this->points.get_communicator());
+    // Every rank that reports a node hears its force: with the ghost
+    // cells, each node of an owned or ghost cell that holds points. A
+    // node on one wall gives it the whole force; one on several (a
+    // corner, also with a fixed or slip wall) gives each unilateral wall
+    // its part along the wall's normal.
+    std::set<std::pair<unsigned int, unsigned int>> visited;
+    for_each_constrained_vertex(
+      [&](const auto &               cell,
+          const unsigned int         v,
+          const unsigned int         node,
+          const NodalCondition<dim> &condition,
+          const unsigned int         first_wall) {
+        const unsigned int n_walls = condition.n_unilateral_walls(node);
+        if (n_walls == 0 || !visited.insert({node, first_wall}).second)
+          return;
+        const types::global_dof_index dof0 = cell->vertex_dof_index(v, 0, 0);
+        Tensor<1, dim>                force;
+        for (unsigned int a = 0; a < dim; ++a)
+          force[a] = residual_at_nodes(dof0 + a);
+        const bool corner = at_corner(node);
+        for (unsigned int k = 0; k < n_walls; ++k)
+          if (contact.holds(node, first_wall + k))
+            {
+              const Tensor<1, dim> &n = condition.unilateral_normal(node, k);
+              condition.record_reaction(node,
+                                        k,
+                                        corner ? (force * n) * n : force);
+            }
+      },
+      true);
   }
 
 

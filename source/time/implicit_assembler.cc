@@ -167,6 +167,8 @@ namespace mpm
             internal_force_square +=
               (cell_external(i) - cell_residual(i)) *
               (cell_external(i) - cell_residual(i));
+        if (with_tangent && !state.sliding_nodes.empty())
+          add_friction_tangent(state, dofs, cell_tangent);
         if (with_tangent && !add_to_tangent(state, dofs, cell_tangent))
           state.constraints.distribute_local_to_global(
             cell_tangent, cell_residual, dofs, state.tangent, state.residual);
@@ -198,6 +200,11 @@ namespace mpm
     if (Utilities::MPI::logical_or(inverted, points.get_communicator()))
       throw RunError("A Newton iterate inverted a material point (det F <= "
                      "0).");
+    // Collective (compress) where some rank has a sliding node.
+    if (state.keeps_unconstrained_residual &&
+        Utilities::MPI::logical_or(!state.sliding_nodes.empty(),
+                                   points.get_communicator()))
+      add_friction_forces(state);
 
     // The scale of the forces ([B] eq. 31): the external load, or, where
     // none acts (a scene driven by its boundaries or its initial motion),
@@ -215,6 +222,71 @@ namespace mpm
         squares    = Utilities::MPI::sum(squares, points.get_communicator());
         state.external_force_norm = std::sqrt(std::max(squares[0], squares[1]));
       }
+  }
+
+
+
+  template <int dim>
+  void
+  ImplicitAssembler<dim>::add_friction_tangent(
+    const ImplicitState<dim> &                  state,
+    const std::vector<types::global_dof_index> &dofs,
+    FullMatrix<double> &                        cell_tangent) const
+  {
+    // K = -dr/du, and the friction -mu (n . r_node) s adds
+    // mu s (n . dr_node/du) = -mu s (n . K_node) to the node's rows.
+    const unsigned int n = dofs.size();
+    std::vector<double> pressing_row(n);
+    for (unsigned int i = 0; i < n; i += dim)
+      {
+        const auto [first, last] = state.sliding_nodes.equal_range(dofs[i]);
+        for (auto slide = first; slide != last; ++slide)
+          {
+            const auto &node = slide->second;
+            for (unsigned int k = 0; k < n; ++k)
+              {
+                pressing_row[k] = 0.;
+                for (unsigned int b = 0; b < dim; ++b)
+                  pressing_row[k] += node.outward[b] * cell_tangent(i + b, k);
+              }
+            for (unsigned int a = 0; a < dim; ++a)
+              for (unsigned int k = 0; k < n; ++k)
+                cell_tangent(i + a, k) -=
+                  node.friction * node.direction[a] * pressing_row[k];
+          }
+      }
+  }
+
+
+
+  template <int dim>
+  void
+  ImplicitAssembler<dim>::add_friction_forces(ImplicitState<dim> &state) const
+  {
+    const TrilinosWrappers::MPI::Vector residual_at_nodes =
+      state.wall_reactions(points.get_communicator());
+    Vector<double>                       force(dim);
+    std::vector<types::global_dof_index> node_dofs(dim);
+    // By the owner of each node's first dof. Linear in r, whatever its
+    // sign, to match the tangent: a node that pulls at convergence is
+    // released by the active set.
+    for (const auto &[dof0, node] : state.sliding_nodes)
+      {
+        if (!state.owned_dofs.is_element(dof0))
+          continue;
+        double pressing = 0.;
+        for (unsigned int a = 0; a < dim; ++a)
+          pressing += residual_at_nodes(dof0 + a) * node.outward[a];
+        for (unsigned int a = 0; a < dim; ++a)
+          {
+            force(a)     = -node.friction * pressing * node.direction[a];
+            node_dofs[a] = dof0 + a;
+          }
+        state.constraints.distribute_local_to_global(force,
+                                                     node_dofs,
+                                                     state.residual);
+      }
+    state.residual.compress(VectorOperation::add);
   }
 
 

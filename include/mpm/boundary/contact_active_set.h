@@ -1,9 +1,13 @@
 #ifndef mpm_boundary_contact_active_set_h
 #define mpm_boundary_contact_active_set_h
 
+#include <boost/serialization/array.hpp>
+#include <boost/serialization/map.hpp>
 #include <boost/serialization/set.hpp>
 #include <boost/serialization/utility.hpp>
 
+#include <array>
+#include <map>
 #include <set>
 #include <utility>
 
@@ -19,9 +23,16 @@ namespace mpm
    *   would pull it out of the grid.
    * - A free pair is engaged where material closes on the wall: a point
    *   that the step brings within half its spacing of the wall, moving
-   *   towards it (which nodes it engages is the system's geometry).
+   *   towards it (which nodes it engages is the system's geometry); and
+   *   the first step starts with every pair held that material touches.
    * - A pair changes at most once a step, so that a node that pulls while
    *   held but moves into the wall when free does not flip for ever.
+   * - A held pair sticks or slides (walls with friction). It is engaged
+   *   sliding where it moved along the wall in the step (on a frictionless
+   *   wall always) and sticking otherwise; it starts to
+   *   slide when the wall's tangential force exceeds mu times its normal
+   *   force, in the direction the material pushes, and sticks again when
+   *   it would slide backwards. This too changes at most once a step.
    * - A step that fails is retried from the set it started with.
    *
    * Nodes are the system's node numbers; walls are numbered by the system
@@ -36,11 +47,37 @@ namespace mpm
       return held.count({node, wall}) > 0;
     }
 
+    /**
+     * The unit direction in which a held pair slides (3 entries, the
+     * unused ones zero), or nullptr where it sticks.
+     */
+    const std::array<double, 3> *
+    slide_direction(const unsigned int node, const unsigned int wall) const
+    {
+      const auto found = sliding.find({node, wall});
+      return found == sliding.end() ? nullptr : &found->second;
+    }
+
     /** Start a step: every pair may change once again. */
     void
     begin_step()
     {
       changed.clear();
+      changed_sliding.clear();
+    }
+
+    /** Whether a step has been solved with this set. */
+    bool
+    has_started() const
+    {
+      return started;
+    }
+
+    /** A step was solved with this set. */
+    void
+    mark_started()
+    {
+      started = true;
     }
 
     /**
@@ -56,6 +93,7 @@ namespace mpm
       if (!(pull > 0.) || !holds(node, wall) || has_changed(node, wall))
         return false;
       held.erase({node, wall});
+      sliding.erase({node, wall});
       changed.insert({node, wall});
       return true;
     }
@@ -65,13 +103,74 @@ namespace mpm
      * changed in this step. Returns whether it was engaged.
      */
     bool
-    engage(const unsigned int node, const unsigned int wall)
+    engage(const unsigned int           node,
+           const unsigned int           wall,
+           const bool                   slides    = false,
+           const std::array<double, 3> &direction = {})
     {
       if (holds(node, wall) || has_changed(node, wall))
         return false;
       held.insert({node, wall});
+      if (slides)
+        sliding[{node, wall}] = direction;
       changed.insert({node, wall});
       return true;
+    }
+
+    /**
+     * Let a held, sticking pair slide along `direction` (a unit vector),
+     * unless its sliding has changed in this step. Returns whether it
+     * does.
+     */
+    bool
+    start_sliding(const unsigned int           node,
+                  const unsigned int           wall,
+                  const std::array<double, 3> &direction)
+    {
+      if (!holds(node, wall) || sliding.count({node, wall}) > 0 ||
+          changed_sliding.count({node, wall}) > 0)
+        return false;
+      sliding[{node, wall}] = direction;
+      changed_sliding.insert({node, wall});
+      return true;
+    }
+
+    /** Let a sliding pair stick, unless that changed in this step. */
+    bool
+    stop_sliding(const unsigned int node, const unsigned int wall)
+    {
+      if (sliding.count({node, wall}) == 0 ||
+          changed_sliding.count({node, wall}) > 0)
+        return false;
+      sliding.erase({node, wall});
+      changed_sliding.insert({node, wall});
+      return true;
+    }
+
+    /**
+     * Turn the direction of a sliding pair (3D: the direction follows the
+     * motion along the wall); not counted as a change.
+     */
+    void
+    turn(const unsigned int           node,
+         const unsigned int           wall,
+         const std::array<double, 3> &direction)
+    {
+      sliding.at({node, wall}) = direction;
+    }
+
+    /**
+     * Before the first step: a free pair that material touches is held
+     * (sliding on a frictionless wall, sticking on others), not counted
+     * as a change.
+     */
+    void
+    hold_from_start(const unsigned int node,
+                    const unsigned int wall,
+                    const bool         slides)
+    {
+      if (held.insert({node, wall}).second && slides)
+        sliding[{node, wall}] = {};
     }
 
     /**
@@ -82,6 +181,7 @@ namespace mpm
     let_go(const unsigned int node, const unsigned int wall)
     {
       held.erase({node, wall});
+      sliding.erase({node, wall});
     }
 
     bool
@@ -94,27 +194,35 @@ namespace mpm
     void
     remember()
     {
-      remembered = held;
+      remembered         = held;
+      remembered_sliding = sliding;
+      remembered_started = started;
     }
 
     void
     restore()
     {
-      held = remembered;
+      held    = remembered;
+      sliding = remembered_sliding;
+      started = remembered_started;
     }
 
-    /** The held pairs, for Checkpoint. */
+    /** The held pairs and how they slide, for Checkpoint. */
     template <class Archive>
     void
     serialize(Archive &archive, const unsigned int)
     {
-      archive &held;
+      archive &held &sliding &started;
     }
 
   private:
     std::set<std::pair<unsigned int, unsigned int>> held;
     std::set<std::pair<unsigned int, unsigned int>> changed;
     std::set<std::pair<unsigned int, unsigned int>> remembered;
+    std::map<std::pair<unsigned int, unsigned int>, std::array<double, 3>>
+      sliding, remembered_sliding;
+    std::set<std::pair<unsigned int, unsigned int>> changed_sliding;
+    bool started = false, remembered_started = false;
   };
 } // namespace mpm
 

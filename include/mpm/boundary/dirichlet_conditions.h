@@ -8,6 +8,7 @@
 #include <mpm/grid/grid.h>
 
 #include <algorithm>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -104,16 +105,30 @@ namespace mpm
     bool
     add_constraints(const unsigned int                              node,
                     const std::array<types::global_dof_index, dim> &dofs,
-                    const bool                                      held,
+                    const Hold *                                    holds,
                     AffineConstraints<double> &constraints) const override;
 
-    const Tensor<1, dim> *
-    unilateral_normal(const unsigned int node) const override
+    /** A contact node has one unilateral wall. */
+    unsigned int
+    n_unilateral_walls(const unsigned int node) const override
     {
       const Constraint *constraint = constraint_of(node);
-      return constraint != nullptr && constraint->unilateral ?
-               &constraint->outward :
-               nullptr;
+      return constraint != nullptr && constraint->unilateral ? 1 : 0;
+    }
+
+    const Tensor<1, dim> &
+    unilateral_normal(const unsigned int node,
+                      const unsigned int) const override
+    {
+      return constraint_of(node)->outward;
+    }
+
+    /** A held contact node does not slip. */
+    double
+    friction_coefficient(const unsigned int,
+                         const unsigned int) const override
+    {
+      return std::numeric_limits<double>::infinity();
     }
 
   private:

@@ -7,6 +7,7 @@
 #include <mpm/boundary/nodal_condition.h>
 #include <mpm/grid/grid.h>
 
+#include <algorithm>
 #include <limits>
 #include <string>
 #include <vector>
@@ -17,12 +18,15 @@ namespace mpm
 
   /**
    * Rigid walls with Coulomb friction on named boundaries of the grid
-   * ([W] 3.2, eq. 10), in the explicit schemes. A wall holds the material
-   * only while it presses (unilateral: a body may lift off) and resists
-   * sliding up to mu times the normal force.
+   * ([W] 3.2, eq. 10). A wall holds the material only while it presses
+   * (unilateral: a body may lift off) and resists sliding up to mu times
+   * the normal force.
    *
-   * The law acts at the wall's nodes (CoulombContact), on the velocity
-   * the node would reach without the wall.
+   * In the explicit schemes the law acts at the wall's nodes
+   * (CoulombContact), on the velocity the node would reach without the
+   * wall. In the implicit schemes the system's active set finds the nodes
+   * the walls hold, and whether each sticks or slides (ContactActiveSet);
+   * the walls give it their normals, coefficients and constraints.
    * A node on several walls (a corner) meets each wall's law in turn. The
    * coefficient `0` gives a frictionless unilateral wall and `inf` one on
    * which the material cannot slide while it presses.
@@ -67,10 +71,11 @@ namespace mpm
     void
     setup() override;
 
+    /** Every wall holds the material only while it presses. */
     bool
     has_unilateral_nodes() const override
     {
-      return false;
+      return !walls.empty();
     }
 
     bool
@@ -84,6 +89,16 @@ namespace mpm
     constrain_velocity(const unsigned int node,
                        double *           velocity) const override;
 
+    /**
+     * Remove the acceleration into the walls, except where the node moves
+     * away from the wall (a body thrown off it); friction is left to the
+     * first step's solve.
+     */
+    void
+    constrain_initial_acceleration(const unsigned int node,
+                                   const double *     velocity,
+                                   double *           acceleration) const override;
+
     void
     begin_explicit_solve(const double time, const double dt) const override;
 
@@ -95,20 +110,54 @@ namespace mpm
                        const double       dt,
                        const double       time) const override;
 
-    /** The implicit schemes refuse friction walls before they get here. */
-    bool
-    add_constraints(const unsigned int,
-                    const std::array<types::global_dof_index, dim> &,
-                    const bool,
-                    AffineConstraints<double> &) const override
+    /** The node's walls, in the order of the entry. */
+    unsigned int
+    n_unilateral_walls(const unsigned int node) const override
     {
-      return false;
+      return first_contact[node + 1] - first_contact[node];
     }
 
-    const Tensor<1, dim> *
-    unilateral_normal(const unsigned int) const override
+    const Tensor<1, dim> &
+    unilateral_normal(const unsigned int node,
+                      const unsigned int k) const override
     {
-      return nullptr;
+      return contacts[first_contact[node] + k].outward;
+    }
+
+    double
+    friction_coefficient(const unsigned int node,
+                         const unsigned int k) const override
+    {
+      return walls[contacts[first_contact[node] + k].wall].friction;
+    }
+
+    /**
+     * A sticking node: every component; a sliding one: the component
+     * along the wall's normal (the Coulomb force along the wall is the
+     * implicit system's).
+     */
+    bool
+    add_constraints(const unsigned int                              node,
+                    const std::array<types::global_dof_index, dim> &dofs,
+                    const Hold *                                    holds,
+                    AffineConstraints<double> &constraints) const override;
+
+    void
+    reset_reactions() const override
+    {
+      std::fill(reactions.begin(), reactions.end(), Reaction());
+    }
+
+    /** Split into the parts along the wall's normal and across it. */
+    void
+    record_reaction(const unsigned int    node,
+                    const unsigned int    k,
+                    const Tensor<1, dim> &force) const override
+    {
+      const unsigned int c = first_contact[node] + k;
+      reactions[c].normal  = force * contacts[c].outward;
+      reactions[c].tangential =
+        force - reactions[c].normal * contacts[c].outward;
     }
 
     /** `<wall>_normal_force` and `<wall>_tangential_force` per wall. */

@@ -6,6 +6,7 @@
 #include <deal.II/lac/affine_constraints.h>
 
 #include <array>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -21,13 +22,28 @@ namespace mpm
    * - the explicit nodal solve, with the node's mass, velocity,
    *   acceleration, the step and the time;
    * - the implicit schemes' constraints on the node's displacement;
-   * - the outward normal of a wall that holds the material only while it
-   *   presses, for the active set (ContactActiveSet) and its gaps.
+   * - the walls that hold the material only while it presses, with their
+   *   normals and friction, for the active set (ContactActiveSet), and
+   *   the forces on them at the end of an implicit step.
    * Each implementation connects its setup() to Grid::changed. Where
    * several conditions act on one node they act in the order of their
    * list, each on what the one before left: in the explicit solve, each
    * on the end velocity that the ones before it gave.
    */
+  /**
+   * How a wall that holds the material only while it presses holds a node
+   * in an implicit step: not at all, along its normal only (the node
+   * slides, against the Coulomb force), or in every direction.
+   */
+  enum class Hold
+  {
+    free,
+    slip,
+    stick
+  };
+
+
+
   template <int dim>
   class NodalCondition
   {
@@ -52,6 +68,18 @@ namespace mpm
      */
     virtual void
     constrain_velocity(const unsigned int node, double *velocity) const = 0;
+
+    /**
+     * The acceleration of a node at the start of a Newmark run, given its
+     * velocity: by default, what constrain_velocity() leaves of it.
+     */
+    virtual void
+    constrain_initial_acceleration(const unsigned int node,
+                                   const double *,
+                                   double *acceleration) const
+    {
+      constrain_velocity(node, acceleration);
+    }
 
     /** An explicit step from `time` to time + dt begins. */
     virtual void
@@ -78,23 +106,50 @@ namespace mpm
                        const double       time) const = 0;
 
     /**
+     * Implicit schemes: the walls of a node that hold the material only
+     * while it presses on them, and their friction (ContactActiveSet finds
+     * which hold it in a step).
+     */
+    virtual unsigned int
+    n_unilateral_walls(const unsigned int node) const = 0;
+
+    /** The outward unit normal of the k-th such wall of a node. */
+    virtual const Tensor<1, dim> &
+    unilateral_normal(const unsigned int node, const unsigned int k) const;
+
+    /**
+     * Its Coulomb coefficient: 0 lets a held node slide freely, inf holds
+     * it without slip.
+     */
+    virtual double
+    friction_coefficient(const unsigned int node, const unsigned int k) const;
+
+    /**
      * Implicit schemes: add the condition on the displacement of a node
-     * whose components are `dofs`. `held` says whether a unilateral wall
-     * holds the node in this step (ContactActiveSet). Returns false where
-     * the condition cannot be put as constraints on these dofs.
+     * whose components are `dofs`. `holds[k]` says how the k-th
+     * unilateral wall of the node holds it in this step. Returns false
+     * where the condition cannot be put as constraints on these dofs.
      */
     virtual bool
     add_constraints(const unsigned int                              node,
                     const std::array<types::global_dof_index, dim> &dofs,
-                    const bool                                      held,
+                    const Hold *                                    holds,
                     AffineConstraints<double> &constraints) const = 0;
 
     /**
-     * The outward unit normal of a wall that holds the node only while the
-     * material presses on it, or nullptr if the node has no such wall.
+     * Implicit schemes, at the end of a step: forget the reactions of the
+     * last step, then hear the force of the material on the k-th
+     * unilateral wall of each node that material touches.
      */
-    virtual const Tensor<1, dim> *
-    unilateral_normal(const unsigned int node) const = 0;
+    virtual void
+    reset_reactions() const
+    {}
+
+    virtual void
+    record_reaction(const unsigned int,
+                    const unsigned int,
+                    const Tensor<1, dim> &) const
+    {}
 
     /** Names of the forces the condition reports in the time series. */
     virtual std::vector<std::string>
@@ -117,7 +172,67 @@ namespace mpm
     virtual void
     write_tractions(const std::string &, const unsigned int) const
     {}
+
+  protected:
+    /**
+     * Hold the displacement of a node along the unit normal n of a wall:
+     * the component along n's largest entry is fixed (a wall along an
+     * axis) or tied to the others (a slanted wall, which must then be the
+     * node's only one: `alone`). Returns false where that cannot be.
+     */
+    static bool
+    hold_along_normal(const std::array<types::global_dof_index, dim> &dofs,
+                      const Tensor<1, dim> &                          n,
+                      const bool                                      alone,
+                      AffineConstraints<double> &constraints)
+    {
+      unsigned int pivot = 0;
+      for (unsigned int a = 1; a < dim; ++a)
+        if (std::abs(n[a]) > std::abs(n[pivot]))
+          pivot = a;
+      if (constraints.is_constrained(dofs[pivot]))
+        return true;
+      const bool along_axis = std::abs(std::abs(n[pivot]) - 1.) < 1e-12;
+      if (!along_axis && !alone)
+        return false;
+      constraints.add_line(dofs[pivot]);
+      if (!along_axis)
+        for (unsigned int a = 0; a < dim; ++a)
+          if (a != pivot)
+            constraints.add_entry(dofs[pivot], dofs[a], -n[a] / n[pivot]);
+      return true;
+    }
+
+    /** Hold every component of a node's displacement. */
+    static void
+    hold_all(const std::array<types::global_dof_index, dim> &dofs,
+             AffineConstraints<double> &                     constraints)
+    {
+      for (unsigned int a = 0; a < dim; ++a)
+        if (!constraints.is_constrained(dofs[a]))
+          constraints.add_line(dofs[a]);
+    }
   };
+
+  template <int dim>
+  const Tensor<1, dim> &
+  NodalCondition<dim>::unilateral_normal(const unsigned int,
+                                         const unsigned int) const
+  {
+    AssertThrow(false, ExcMessage("This condition has no unilateral walls."));
+    static const Tensor<1, dim> none;
+    return none;
+  }
+
+
+
+  template <int dim>
+  double
+  NodalCondition<dim>::friction_coefficient(const unsigned int,
+                                            const unsigned int) const
+  {
+    return 0.;
+  }
 } // namespace mpm
 
 #endif

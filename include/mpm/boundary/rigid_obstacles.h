@@ -88,16 +88,16 @@ namespace mpm
     bool
     add_constraints(const unsigned int,
                     const std::array<types::global_dof_index, dim> &,
-                    const bool,
+                    const Hold *,
                     AffineConstraints<double> &) const override
     {
       return false;
     }
 
-    const Tensor<1, dim> *
-    unilateral_normal(const unsigned int) const override
+    unsigned int
+    n_unilateral_walls(const unsigned int) const override
     {
-      return nullptr;
+      return 0;
     }
 
     /**

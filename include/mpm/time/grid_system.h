@@ -22,7 +22,9 @@ namespace mpm
    * the cells that hold points and FE_Nothing elsewhere (hp), so the
    * matrix stays regular and its size follows the material; one point
    * group per cell, its supports from GridBasis; the grid conditions as
-   * constraints, with the active set of the contact walls.
+   * constraints, with the active set of the walls that hold the material
+   * only while it presses, and the Coulomb force of those with friction
+   * where the material slides on them.
    */
   template <int dim>
   class GridSystem : public ImplicitSystem<dim>
@@ -52,8 +54,16 @@ namespace mpm
       return false;
     }
 
+    /**
+     * Release, engage, and let held nodes of walls with friction start or
+     * stop sliding (ContactActiveSet).
+     */
     bool
     update_active_set(ImplicitState<dim> &state) override;
+
+    /** The force of the material on each wall that holds a node. */
+    void
+    finish_step(const ImplicitState<dim> &state) override;
 
     void
     remember_active_set() override
@@ -104,23 +114,54 @@ namespace mpm
     make_constraints(ImplicitState<dim> &state) const;
 
     /**
-     * Call f(cell, vertex, node, condition) for each vertex of each locally
-     * owned cell that holds points, for each condition that acts on it.
+     * Call f(cell, vertex, node, condition, first wall) for each vertex of
+     * each locally owned (and, if asked, ghost) cell that holds points, for
+     * each condition that acts on it; the condition's unilateral walls at
+     * the node are numbered from `first wall` on.
      */
     template <typename Function>
     void
-    for_each_constrained_vertex(const Function &f) const;
+    for_each_constrained_vertex(const Function &f,
+                                const bool      with_ghosts = false) const;
 
-    /**
-     * Call f(node, first dof, outward normal) once per node of a
-     * unilateral wall.
-     */
+    /** A unilateral wall at a node. */
+    struct ContactPair
+    {
+      unsigned int            node;
+      unsigned int            wall;
+      types::global_dof_index dof0;
+      const Tensor<1, dim> &  outward;
+      double                  friction;
+      /**
+       * Whether the node lies on another wall too: the force along one
+       * wall is then the other's, so a held node sticks.
+       */
+      bool corner;
+    };
+
+    /** Call f(pair) once per unilateral wall of each node. */
     template <typename Function>
     void
-    for_each_contact_node(const Function &f) const;
+    for_each_contact_node(const Function &f,
+                          const bool      with_ghosts = false) const;
+
+    /** Whether more than one wall acts on the node. */
+    bool
+    at_corner(const unsigned int node) const;
+
+    /** The displacement of the node in the step, along the wall. */
+    static Tensor<1, dim>
+    sliding_increment(const ImplicitState<dim> &    state,
+                      const types::global_dof_index dof0,
+                      const Tensor<1, dim> &        outward);
+
+    /** A unit vector as ContactActiveSet keeps it. */
+    static std::array<double, 3>
+    as_direction(const Tensor<1, dim> &unit);
 
     /**
-     * Per contact node (at its first dof, ghosted): nonzero where material
+     * Per contact node and wall (at its first dof plus the wall, ghosted):
+     * nonzero where material
      * touches the wall, that is a point in an adjacent cell lies closer to
      * the wall than half its spacing. After a solve, at the points' new
      * positions and only for points that moved towards the wall.
@@ -139,7 +180,8 @@ namespace mpm
 
     /**
      * The contact nodes (Grid node ids, stable while the grid does not
-     * change; wall 0) that hold the material. A step starts from the
+     * change; walls numbered as for_each_constrained_vertex does) that
+     * hold the material, and how they slide. A step starts from the
      * previous step's set.
      */
     ContactActiveSet contact;

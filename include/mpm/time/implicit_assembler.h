@@ -33,8 +33,9 @@ namespace mpm
 
     /**
      * Residual f_ext - f_int into state.residual (f_ext into
-     * state.correction, for the force scale), and the tangent if asked.
-     * A point inverted by the iterate throws RunError.
+     * state.correction, for the force scale), and the tangent if asked,
+     * with the Coulomb force of the walls where nodes slide on them. A
+     * point inverted by the iterate throws RunError.
      */
     void
     assemble(ImplicitState<dim> &state,
@@ -67,6 +68,23 @@ namespace mpm
     }
 
   private:
+    /**
+     * Where nodes of the group slide on walls with friction
+     * (state.sliding_nodes): the wall resists with mu N along the slide,
+     * N the force the material presses with, n . r of the node's rows
+     * before constraints. Its derivative -mu s n . dr/du goes into the
+     * node's rows of the group's tangent, so Newton stays quadratic (and
+     * the tangent unsymmetric).
+     */
+    void
+    add_friction_tangent(const ImplicitState<dim> &                  state,
+                         const std::vector<types::global_dof_index> &dofs,
+                         FullMatrix<double> &cell_tangent) const;
+
+    /** The force mu N of each sliding node, once all groups are in. */
+    void
+    add_friction_forces(ImplicitState<dim> &state) const;
+
     /**
      * Add a group's matrix into the tangent when all its dofs are owned
      * here and unconstrained, and return true; otherwise leave it to

@@ -11,6 +11,7 @@
 
 #include <mpm/basis/support.h>
 
+#include <map>
 #include <memory>
 #include <vector>
 
@@ -141,7 +142,24 @@ namespace mpm
      */
     bool keeps_unconstrained_residual = false;
 
+    /**
+     * A node that slides on a wall with friction (the system's active
+     * set): the wall's outward normal, the unit direction of the slide
+     * and the Coulomb coefficient.
+     */
+    struct SlidingNode
+    {
+      Tensor<1, dim> outward;
+      Tensor<1, dim> direction;
+      double         friction;
+    };
+
     std::vector<PointGroup> groups;
+    /**
+     * The sliding nodes of the locally owned groups, by the node's first
+     * dof (a node may slide on two walls); empty without friction walls.
+     */
+    std::multimap<types::global_dof_index, SlidingNode> sliding_nodes;
     /** GMM: nodes in no point's support, held at zero. */
     std::vector<unsigned int> unreached_nodes;
 
