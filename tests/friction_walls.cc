@@ -44,6 +44,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <tuple>
+#include <utility>
 
 #include "tests.h"
 
@@ -81,6 +83,28 @@ namespace
       }
     return num / den;
   }
+
+  /**
+   * The largest travel of the centre of mass from its start, and the
+   * largest |T| - mu N, over the rows.
+   */
+  std::pair<double, double>
+  travel_and_bound(mpm_tests::Columns &csv, const double mu)
+  {
+    double travel = 0., bound = 0.;
+    for (unsigned int n = 0; n < csv["time"].size(); ++n)
+      {
+        travel = std::max(travel,
+                          std::abs(csv["centre_of_mass_x"][n] -
+                                   csv["centre_of_mass_x"][0]));
+        bound  = std::max(bound,
+                         std::abs(csv["bottom_tangential_force"][n]) -
+                           mu * csv["bottom_normal_force"][n]);
+      }
+    return {travel, bound};
+  }
+
+
 
   /**
    * The largest gap, over rows, between the change of momentum since the
@@ -231,17 +255,8 @@ namespace
     auto stick =
       run("newmark_stick",
           with({"Boundary conditions/Friction boundaries=bottom: 0.7"}));
-    double travel = 0.;
-    bound         = 0.;
-    for (unsigned int n = 0; n < stick["time"].size(); ++n)
-      {
-        travel = std::max(travel,
-                          std::abs(stick["centre_of_mass_x"][n] -
-                                   stick["centre_of_mass_x"][0]));
-        bound  = std::max(bound,
-                         std::abs(stick["bottom_tangential_force"][n]) -
-                           0.7 * stick["bottom_normal_force"][n]);
-      }
+    double travel;
+    std::tie(travel, bound) = travel_and_bound(stick, 0.7);
     deallog << "Newmark, mu = 0.7: largest travel " << travel << " m"
             << std::endl;
     mpm_tests::check("Newmark, mu = 0.7: the block sticks, |x - x0| < 1e-4 "
@@ -420,16 +435,7 @@ main(int argc, char **argv)
     auto csv =
       run("stick",
           {"Boundary conditions/Friction boundaries=bottom: 0.7"});
-    double travel = 0., bound = 0.;
-    for (unsigned int n = 0; n < csv["time"].size(); ++n)
-      {
-        travel = std::max(travel,
-                          std::abs(csv["centre_of_mass_x"][n] -
-                                   csv["centre_of_mass_x"][0]));
-        bound  = std::max(bound,
-                         std::abs(csv["bottom_tangential_force"][n]) -
-                           0.7 * csv["bottom_normal_force"][n]);
-      }
+    const auto [travel, bound] = travel_and_bound(csv, 0.7);
     deallog << "mu = 0.7: largest travel " << travel << " m" << std::endl;
     mpm_tests::check("mu = 0.7: the block sticks, |x - x0| < 1e-4 m over "
                      "0.5 s",

@@ -292,7 +292,9 @@ namespace mpm
                           cell->vertex_dof_index(v, 0, 0),
                           condition.unilateral_normal(node, k),
                           condition.friction_coefficient(node, k),
-                          at_corner(node)});
+                          at_corner(node),
+                          condition,
+                          k});
       },
       with_ghosts);
   }
@@ -535,29 +537,17 @@ namespace mpm
     // node on one wall gives it the whole force; one on several (a
     // corner, also with a fixed or slip wall) gives each unilateral wall
     // its part along the wall's normal.
-    std::set<std::pair<unsigned int, unsigned int>> visited;
-    for_each_constrained_vertex(
-      [&](const auto &               cell,
-          const unsigned int         v,
-          const unsigned int         node,
-          const NodalCondition<dim> &condition,
-          const unsigned int         first_wall) {
-        const unsigned int n_walls = condition.n_unilateral_walls(node);
-        if (n_walls == 0 || !visited.insert({node, first_wall}).second)
+    for_each_contact_node(
+      [&](const ContactPair &pair) {
+        if (!contact.holds(pair.node, pair.wall))
           return;
-        const types::global_dof_index dof0 = cell->vertex_dof_index(v, 0, 0);
-        Tensor<1, dim>                force;
+        Tensor<1, dim> force;
         for (unsigned int a = 0; a < dim; ++a)
-          force[a] = residual_at_nodes(dof0 + a);
-        const bool corner = at_corner(node);
-        for (unsigned int k = 0; k < n_walls; ++k)
-          if (contact.holds(node, first_wall + k))
-            {
-              const Tensor<1, dim> &n = condition.unilateral_normal(node, k);
-              condition.record_reaction(node,
-                                        k,
-                                        corner ? (force * n) * n : force);
-            }
+          force[a] = residual_at_nodes(pair.dof0 + a);
+        pair.condition.record_reaction(
+          pair.node,
+          pair.k,
+          pair.corner ? (force * pair.outward) * pair.outward : force);
       },
       true);
   }

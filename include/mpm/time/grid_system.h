@@ -137,6 +137,9 @@ namespace mpm
        * wall is then the other's, so a held node sticks.
        */
       bool corner;
+      /** The condition the wall belongs to, and its number there. */
+      const NodalCondition<dim> &condition;
+      unsigned int               k;
     };
 
     /** Call f(pair) once per unilateral wall of each node. */
