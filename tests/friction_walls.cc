@@ -30,6 +30,10 @@
 //   |T| = mu N where the block slides (to Newton's tolerance); thrown up,
 //   the block's momentum is that of the same block with no floor (the
 //   Newmark start differs from M (v0 + g t)), and a slip floor misses it;
+// - a cube in 3D (scenes/friction_cube.prm, Newmark) with gravity tilted
+//   towards the floor's diagonal: it slides along the diagonal with the
+//   same law within 1 % (the sliding directions follow the motion), with
+//   |T| = mu N;
 // - quasi-static, a block pressed onto a rough base (prm/rough_base.prm,
 //   mu = 0.3, half model with a slip wall on the axis): the base carries
 //   the load, p B (vertical equilibrium); Coulomb at every node; near the
@@ -263,6 +267,45 @@ namespace
                      "m, and |T| <= mu N at every step",
                      travel < 1e-4 && bound < 1e-9 * stick["mass"][0] * g);
     check_tractions("output-newmark_stick", 0.7, false, stick, 1e-9);
+
+    // 3D: sliding along the floor's diagonal.
+    {
+      const std::string name = "newmark_cube";
+      if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+        std::filesystem::remove_all("output-" + name);
+      MPI_Barrier(MPI_COMM_WORLD);
+      auto cube = mpm_tests::run_scene("scenes/friction_cube.prm",
+                                       "output-" + name);
+      // The slope of the diagonal momentum over the last 0.1 s, when the
+      // block has settled on the floor.
+      const unsigned int last = cube["time"].size() - 1, first = last - 10;
+      const auto diagonal = [&](const unsigned int n) {
+        return (cube["momentum_x"][n] + cube["momentum_z"][n]) /
+               std::sqrt(2.);
+      };
+      const double a_cube = (diagonal(last) - diagonal(first)) /
+                            (cube["time"][last] - cube["time"][first]) /
+                            cube["mass"][0];
+      double across = 0., slip_3d = 0.;
+      for (unsigned int n = first; n <= last; ++n)
+        {
+          across = std::max(across,
+                            std::abs(cube["momentum_x"][n] -
+                                     cube["momentum_z"][n]) /
+                              std::abs(diagonal(n)));
+          slip_3d = std::max(slip_3d,
+                             std::abs(cube["bottom_tangential_force"][n] -
+                                      0.2 * cube["bottom_normal_force"][n]) /
+                               cube["bottom_normal_force"][n]);
+        }
+      deallog << "Newmark, 3D cube: a / (g (sin - mu cos)) = "
+              << a_cube / exact << std::endl;
+      mpm_tests::check("Newmark, 3D cube: it slides along the diagonal "
+                       "(momenta x and z equal to 1e-6) with g (sin 30 - mu "
+                       "cos 30) within 1 %, |T| = mu N to 1e-9",
+                       std::abs(a_cube / exact - 1.) < 0.01 &&
+                         across < 1e-6 && slip_3d < 1e-9);
+    }
 
     // Thrown up: against the same block with no floor at all.
     const std::vector<std::string> thrown = {
