@@ -201,7 +201,8 @@ namespace mpm
                      direction != nullptr       ? Hold::slip :
                                                   Hold::stick;
           const double friction = condition.friction_coefficient(node, k);
-          if (holds[k] == Hold::slip && friction > 0. && first_visit(node, wall))
+          if (holds[k] == Hold::slip && friction > 0. &&
+              first_visit(node, wall))
             {
               typename ImplicitState<dim>::SlidingNode sliding;
               sliding.outward  = condition.unilateral_normal(node, k);

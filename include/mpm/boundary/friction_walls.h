@@ -95,9 +95,10 @@ namespace mpm
      * first step's solve.
      */
     void
-    constrain_initial_acceleration(const unsigned int node,
-                                   const double *     velocity,
-                                   double *           acceleration) const override;
+    constrain_initial_acceleration(
+      const unsigned int node,
+      const double *     velocity,
+      double *           acceleration) const override;
 
     void
     begin_explicit_solve(const double time, const double dt) const override;
