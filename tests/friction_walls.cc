@@ -61,15 +61,15 @@ namespace
   const double theta = numbers::PI / 6.;
 
   mpm_tests::Columns
-  run(const std::string &name, const std::vector<std::string> &settings)
+  run(const std::string &             name,
+      const std::vector<std::string> &settings,
+      const std::string &             scene = "scenes/friction_block.prm")
   {
     // No traction files of an earlier run.
     if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
       std::filesystem::remove_all("output-" + name);
     MPI_Barrier(MPI_COMM_WORLD);
-    return mpm_tests::run_scene("scenes/friction_block.prm",
-                                "output-" + name,
-                                settings);
+    return mpm_tests::run_scene(scene, "output-" + name, settings);
   }
 
   /** The centre of mass's acceleration along the plane, by a fit of x(t). */
@@ -87,6 +87,33 @@ namespace
       }
     return num / den;
   }
+
+  /**
+   * The block's acceleration along the plane on a frictionless slip floor
+   * and on a fixed floor, with `settings` (runs named with `prefix`).
+   */
+  std::pair<double, double>
+  slip_and_fixed_floors(const std::string &             prefix,
+                        const std::vector<std::string> &settings)
+  {
+    std::vector<std::string> slip = settings, fixed = settings;
+    for (auto *floor : {&slip, &fixed})
+      floor->push_back("Boundary conditions/Friction boundaries=");
+    slip.push_back("Boundary conditions/Slip boundaries=bottom");
+    fixed.push_back("Boundary conditions/Fixed boundaries=bottom");
+    const double exact   = g * (std::sin(theta) - 0.2 * std::cos(theta));
+    auto         slip_csv  = run(prefix + "frictionless", slip);
+    auto         fixed_csv = run(prefix + "fixed", fixed);
+    const double a_slip  = acceleration_along_plane(slip_csv);
+    const double a_fixed = acceleration_along_plane(fixed_csv);
+    deallog << (prefix.empty() ? "" : "Newmark, ")
+            << "slip floor: a / (g sin 30) = " << a_slip / (g * 0.5)
+            << "; fixed floor: a / (g (sin - mu cos)) = " << a_fixed / exact
+            << std::endl;
+    return {a_slip, a_fixed};
+  }
+
+
 
   /**
    * The largest travel of the centre of mass from its start, and the
@@ -240,17 +267,7 @@ namespace
                      bound < 1e-9 * slide["mass"][0] * g && slip_gap < 1e-9);
     check_tractions("output-newmark_slide", 0.2, true, slide, 1e-9);
 
-    auto slip  = run("newmark_frictionless",
-                    with({"Boundary conditions/Friction boundaries=",
-                          "Boundary conditions/Slip boundaries=bottom"}));
-    auto fixed = run("newmark_fixed",
-                     with({"Boundary conditions/Friction boundaries=",
-                           "Boundary conditions/Fixed boundaries=bottom"}));
-    const double a_slip  = acceleration_along_plane(slip);
-    const double a_fixed = acceleration_along_plane(fixed);
-    deallog << "Newmark, slip floor: a / (g sin 30) = " << a_slip / (g * 0.5)
-            << "; fixed floor: a / (g (sin - mu cos)) = " << a_fixed / exact
-            << std::endl;
+    const auto [a_slip, a_fixed] = slip_and_fixed_floors("newmark_", newmark);
     mpm_tests::check("Newmark: the slip and fixed floors miss the Coulomb "
                      "law by more than 10 %",
                      std::abs(a_slip / exact - 1.) > 0.1 &&
@@ -270,12 +287,7 @@ namespace
 
     // 3D: sliding along the floor's diagonal.
     {
-      const std::string name = "newmark_cube";
-      if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
-        std::filesystem::remove_all("output-" + name);
-      MPI_Barrier(MPI_COMM_WORLD);
-      auto cube = mpm_tests::run_scene("scenes/friction_cube.prm",
-                                       "output-" + name);
+      auto cube = run("newmark_cube", {}, "scenes/friction_cube.prm");
       // The slope of the diagonal momentum over the last 0.1 s, when the
       // block has settled on the floor.
       const unsigned int last = cube["time"].size() - 1, first = last - 10;
@@ -354,13 +366,9 @@ namespace
   {
     const double p = 1e5, B = 1., mu = 0.3;
     const auto   run_base = [](const std::string &name, const std::string &mu) {
-      if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
-        std::filesystem::remove_all("output-" + name);
-      MPI_Barrier(MPI_COMM_WORLD);
-      return mpm_tests::run_scene(
-        "../prm/rough_base.prm",
-        "output-" + name,
-        {"Boundary conditions/Friction boundaries=bottom: " + mu});
+      return run(name,
+                 {"Boundary conditions/Friction boundaries=bottom: " + mu},
+                 "../prm/rough_base.prm");
     };
     auto rough = run_base("rough_base", "0.3");
     auto smooth = run_base("smooth_base", "0");
@@ -452,18 +460,8 @@ main(int argc, char **argv)
 
   // The same block where the floor has no friction, and where it is fixed.
   {
-    auto         slip  = run("frictionless",
-                    {"Boundary conditions/Friction boundaries=",
-                     "Boundary conditions/Slip boundaries=bottom"});
-    auto         fixed = run("fixed",
-                     {"Boundary conditions/Friction boundaries=",
-                      "Boundary conditions/Fixed boundaries=bottom"});
     const double exact = g * (std::sin(theta) - 0.2 * std::cos(theta));
-    const double a_slip  = acceleration_along_plane(slip);
-    const double a_fixed = acceleration_along_plane(fixed);
-    deallog << "slip floor: a / (g sin 30) = " << a_slip / (g * 0.5)
-            << "; fixed floor: a / (g (sin - mu cos)) = " << a_fixed / exact
-            << std::endl;
+    const auto [a_slip, a_fixed] = slip_and_fixed_floors("", {});
     mpm_tests::check("a frictionless floor gives g sin 30 (within 1 %), "
                      "not the Coulomb law",
                      std::abs(a_slip / (g * 0.5) - 1.) < 0.01 &&
