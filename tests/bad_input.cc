@@ -181,6 +181,21 @@ main(int argc, char **argv)
   run_case("a wall that ends, with the quasi-static scheme",
            with({"Time stepping/Scheme=quasi-static",
                  "Boundary conditions/Fixed boundaries=bottom until 1"}));
+  const std::string axisymmetric = "Grid/Geometry=axisymmetric";
+  run_case("axisymmetric grid at negative radius",
+           with({axisymmetric, "Grid/Arguments=4, 4 : -0.5, 0 : 1, 1 : true",
+                 "Boundary conditions/Slip boundaries=left"}));
+  run_case("axisymmetric 3D scene",
+           with({axisymmetric, "Dimension=3",
+                 "Grid/Arguments=2 : 0 : 1 : true",
+                 "Grid/Generator=subdivided_hyper_cube",
+                 "Bodies/block/Lower corner=0.25, 0, 0.25",
+                 "Bodies/block/Upper corner=0.75, 0.5, 0.75",
+                 "Gravity=0, 0, 0"}));
+  run_case("axisymmetric grid whose axis is not held", with({axisymmetric}));
+  run_case("axisymmetric quasi-static scene",
+           with({axisymmetric, "Time stepping/Scheme=quasi-static",
+                 "Boundary conditions/Slip boundaries=left"}));
   run_case("both a total force and a traction",
            with({"Time stepping/Scheme=quasi-static",
                  "Loads/Total force=0, -1",

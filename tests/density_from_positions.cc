@@ -100,7 +100,7 @@ test()
     transfer.for_each_point([&](auto &particle, const Support<dim> &support) {
       const ArrayView<const double> p = particle->get_properties();
       const double rho_P = transfer.density(
-        support, p, Layout::get_deformation_gradient(p), true);
+        support, p, Layout::get_deformation_gradient_3d(p), true);
       density_error = std::max(density_error, std::abs(rho_P / expected - 1.));
       low           = std::min(low, rho_P);
       high          = std::max(high, rho_P);

@@ -21,7 +21,8 @@ namespace mpm
   template <int dim>
   void
   GridTransfer<dim>::add_force(const ArrayView<const double> &p,
-                               const Support<dim> &           support)
+                               const Support<dim> &           support,
+                               const Point<dim> &             x)
   {
     const double m = p[Layout::mass];
     // The supports are evaluated at the current positions: dF = I.
@@ -32,8 +33,18 @@ namespace mpm
                                        nullptr,
                                        nullptr,
                                        scratch);
-    const std::vector<double> &internal = scratch.force;
-    Tensor<1, dim>        external = m * gravity;
+    std::vector<double> &internal = scratch.force;
+    if (points.get_grid().is_axisymmetric())
+      {
+        // The hoop part of the ring's internal force, V sigma_tt N_i / r
+        // ([W] eq. 5, the fourth row of B).
+        const double hoop = Layout::current_volume(p) *
+                            p[Layout::stress + 2] /
+                            x[0];
+        for (unsigned int i = 0; i < support.n_nodes; ++i)
+          internal[i * dim] += hoop * support.N[i];
+      }
+    Tensor<1, dim> external = m * gravity;
     if (points.has_implicit_fields())
       for (unsigned int d = 0; d < dim; ++d)
         external[d] += p[points.point_load_index() + d];
@@ -67,7 +78,7 @@ namespace mpm
           nodes.mark_active(node);
         }
       if (with_force)
-        add_force(p, support);
+        add_force(p, support, particle->get_location());
     });
     nodes.finish_projection();
     if (nodal_density)
@@ -102,7 +113,7 @@ namespace mpm
   {
     nodes.begin_projection(NodalLayout::force, dim);
     for_each_point([&](const auto &particle, const Support<dim> &support) {
-      add_force(particle->get_properties(), support);
+      add_force(particle->get_properties(), support, particle->get_location());
     });
     nodes.finish_projection();
   }

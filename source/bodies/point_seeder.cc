@@ -121,8 +121,11 @@ namespace mpm
         const double density = bodies[c.body].density() > 0. ?
                                  bodies[c.body].density() :
                                  material.density();
-        properties[Layout::mass]             = density * c.volume;
-        properties[Layout::reference_volume] = c.volume;
+        // An axisymmetric point is the ring its area sweeps: 2 pi x times
+        // the area (Pappus), exact for a box centred at the point.
+        const double volume = c.volume * grid.ring_factor(c.x);
+        properties[Layout::mass]             = density * volume;
+        properties[Layout::reference_volume] = volume;
         for (unsigned int d = 0; d < dim; ++d)
           properties[Layout::reference_size + d] = c.size[d];
         const Tensor<1, dim> v = bodies[c.body].initial_velocity(c.x);
@@ -131,6 +134,8 @@ namespace mpm
             properties[Layout::velocity + d] = v[d];
             properties[Layout::deformation_gradient + d * dim + d] = 1.;
           }
+        if (dim == 2)
+          properties[Layout::out_of_plane_stretch] = 1.;
         properties[Layout::body_id]     = c.body;
         properties[Layout::material_id] = bodies[c.body].material_index();
         const ArrayView<double> p(properties.data(), properties.size());

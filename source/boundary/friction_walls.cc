@@ -123,7 +123,6 @@ namespace mpm
             const Tensor<1, dim> normal = Grid<dim>::face_normal(cell, f);
             if (cell->is_locally_owned())
               normal_sums[w] += normal;
-            const double share = face->measure() / face->n_vertices();
             for (const unsigned int v : face->vertex_indices())
               {
                 const unsigned int node =
@@ -131,6 +130,13 @@ namespace mpm
                 Contact &contact = found[{node, w}];
                 contact.wall     = w;
                 contact.outward += normal;
+                // int N_v dA over the face; in axisymmetry over the surface
+                // of revolution, 2 pi L (2 x_v + x_other) / 6 on a segment.
+                double share = face->measure() / face->n_vertices();
+                if (grid.is_axisymmetric())
+                  share *= grid.ring_factor(
+                    Point<dim>((2. * face->vertex(v) + face->vertex(1 - v)) /
+                               3.));
                 contact.area += share;
                 contact.position = face->vertex(v);
               }

@@ -158,6 +158,12 @@ namespace mpm
       throw InputError("Boundary conditions/Friction boundaries act with "
                        "Method = MPM; the meshfree methods take Fixed, Slip "
                        "and Contact boundaries.");
+    if (grid->is_axisymmetric() && (scheme_name != "explicit" ||
+                                    method != "MPM"))
+      throw InputError("Grid/Geometry = axisymmetric runs with Time "
+                       "stepping/Scheme = explicit and Method = MPM; the "
+                       "quasi-static and Newmark forms and the meshfree "
+                       "methods are plane strain or 3D only.");
     obstacles =
       std::make_unique<RigidObstacles<dim>>(prm, names.obstacles, *grid);
     if (!obstacles->empty() && scheme_name != "explicit")
@@ -169,6 +175,8 @@ namespace mpm
     // Set up the grid and everything on it (the conditions find their
     // nodes when the grid announces itself).
     grid->create();
+    if (grid->is_axisymmetric())
+      check_axis();
     nodes = std::make_unique<GridNodes<dim>>(*grid);
     nodes->setup();
     basis = std::make_unique<GridBasis<dim>>(*grid);
@@ -312,6 +320,37 @@ namespace mpm
         restarted = true;
       }
     scheme->check_start();
+  }
+
+
+
+  template <int dim>
+  void
+  Simulator<dim>::check_axis() const
+  {
+    // A boundary face on x = 0 lies on the axis: the material there may
+    // move along it but not across it.
+    bool unheld = false;
+    for (const auto &cell : grid->get_triangulation().active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const unsigned int f : cell->face_indices())
+          if (cell->at_boundary(f))
+            {
+              const auto face    = cell->face(f);
+              bool       on_axis = true;
+              for (const unsigned int v : face->vertex_indices())
+                on_axis = on_axis && std::abs(face->vertex(v)[0]) <=
+                                       1e-12 * cell->diameter();
+              using Kind = typename DirichletConditions<dim>::WallKind;
+              const Kind kind = dirichlet->kind_of(face->boundary_id());
+              if (on_axis && kind != Kind::slip && kind != Kind::fixed)
+                unheld = true;
+            }
+    if (Utilities::MPI::logical_or(unheld, communicator))
+      throw InputError("Grid/Geometry = axisymmetric: the grid's boundary "
+                       "on the axis (x = 0) is not held. Name it in "
+                       "Boundary conditions/Slip boundaries (the axis of "
+                       "symmetry: v_r = 0), or in Fixed boundaries.");
   }
 
 

@@ -42,6 +42,19 @@ namespace mpm
                       "A gmsh .msh file with the coarse grid, relative to the "
                       "parameter file. Physical tags on its boundary become "
                       "boundary ids.");
+    prm.declare_entry(
+      "Geometry",
+      "plane strain",
+      Patterns::Selection("plane strain|axisymmetric"),
+      "What a 2D scene stands for. plane strain: a slice of unit depth "
+      "(F_zz = 1, sigma_zz kept). axisymmetric: a body of revolution about "
+      "the y axis, x the radius (the grid must lie in x >= 0, and a grid "
+      "boundary on the axis must be a Slip or Fixed boundary); each point "
+      "is the ring it sweeps, so masses, forces, impulses and removed mass "
+      "are those of the full ring (2 pi x), and sigma_zz is the hoop "
+      "stress. Axisymmetric scenes run with the explicit scheme and MPM. "
+      "3D scenes take plane strain (the default), which there means no "
+      "reduction.");
     prm.declare_entry("Global refinements",
                       "0",
                       Patterns::Integer(0, 20),
@@ -68,6 +81,10 @@ namespace mpm
     arguments     = prm.get("Arguments");
     mesh_file     = prm.get("Mesh file");
     n_refinements = prm.get_integer("Global refinements");
+    axisymmetric  = prm.get("Geometry") == "axisymmetric";
+    if (axisymmetric && dim != 2)
+      throw InputError("Grid/Geometry = axisymmetric needs Dimension = 2 (x "
+                       "the radius, y the axis).");
     for (const auto &entry :
          Utilities::split_string_list(prm.get("Boundary names"), ','))
       {
@@ -121,6 +138,24 @@ namespace mpm
           }
       }
     triangulation.refine_global(n_refinements);
+    if (axisymmetric)
+      {
+        double lowest = std::numeric_limits<double>::max(), size = 0.;
+        for (const auto &cell : triangulation.active_cell_iterators())
+          if (cell->is_locally_owned())
+            for (const unsigned int v : cell->vertex_indices())
+              {
+                lowest = std::min(lowest, cell->vertex(v)[0]);
+                size   = std::max(size, cell->diameter());
+              }
+        lowest = Utilities::MPI::min(lowest, get_communicator());
+        size   = Utilities::MPI::max(size, get_communicator());
+        if (lowest < -1e-12 * size)
+          throw InputError("Grid/Geometry = axisymmetric: the grid reaches x "
+                           "= " + std::to_string(lowest) +
+                           ", a negative radius. An axisymmetric grid lies "
+                           "in x >= 0 (x the radius, the axis at x = 0).");
+      }
     update();
   }
 

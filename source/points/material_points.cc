@@ -31,6 +31,8 @@ namespace mpm
       for (unsigned int j = 0; j < dim; ++j)
         n[deformation_gradient + i * dim + j] =
           std::string("F_") + axes[i] + axes[j];
+    if (dim == 2)
+      n[out_of_plane_stretch] = "F_zz";
     const char *stress_names[6] = {
       "stress_xx", "stress_yy", "stress_zz", "stress_xy", "stress_xz",
       "stress_yz"};

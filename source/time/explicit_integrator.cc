@@ -148,11 +148,17 @@ namespace mpm
                                          StepReport &        report)
   {
     const ArrayView<double> p = particle->get_properties();
-    const Tensor<2, dim>    L = transfer.velocity_gradient(support);
-    const Tensor<2, dim>    F_old = Layout::get_deformation_gradient(p);
-    const Tensor<2, dim>    F_new =
-      (unit_symmetric_tensor<dim>() + dt * L) * F_old;
-    const double J_new = determinant(F_new);
+    // In 3x3 form: in an axisymmetric scene L_tt = v_r / r, the hoop rate
+    // ([W]'s d_tt); in plane strain L_zz = 0.
+    const Tensor<2, 3> L = Layout::embed(
+      transfer.velocity_gradient(support),
+      grid.is_axisymmetric() ?
+        transfer.interpolate(support, NodalLayout::velocity)[0] /
+          particle->get_location()[0] :
+        0.);
+    const Tensor<2, 3> F_old = Layout::get_deformation_gradient_3d(p);
+    const Tensor<2, 3> F_new = (unit_symmetric_tensor<3>() + dt * L) * F_old;
+    const double       J_new = determinant(F_new);
     if (!(J_new > 0.))
       {
         report.record_failure(particle->get_location(),
@@ -162,9 +168,9 @@ namespace mpm
       }
 
     StepKinematics kinematics;
-    kinematics.F_old             = Layout::embed(F_old, 1.);
-    kinematics.F_new             = Layout::embed(F_new, 1.);
-    kinematics.velocity_gradient = Layout::embed(L, 0.);
+    kinematics.F_old             = F_old;
+    kinematics.F_new             = F_new;
+    kinematics.velocity_gradient = L;
     kinematics.dt                = dt;
     kinematics.density           = transfer.density(
       support,

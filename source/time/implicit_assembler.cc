@@ -102,7 +102,7 @@ namespace mpm
             PointAssembly<dim>::internal_force(
               support,
               &dF,
-              weight * Layout::current_volume(p, dF * F_n),
+              weight * Layout::current_volume_in_plane(p, dF * F_n),
               stress,
               &c,
               with_tangent ? &own_tangent : nullptr,

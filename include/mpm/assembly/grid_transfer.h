@@ -83,7 +83,7 @@ namespace mpm
     double
     density(const Support<dim> &           support,
             const ArrayView<const double> &p,
-            const Tensor<2, dim> &         F,
+            const Tensor<2, 3> &           F,
             const bool                     from_positions) const
     {
       Assert(!from_positions || nodal_density, ExcInternalError());
@@ -180,8 +180,14 @@ namespace mpm
     }
 
   private:
+    /**
+     * Add a point's gravity, load and internal force (with the hoop term in
+     * an axisymmetric scene, which needs its position x) to its nodes.
+     */
     void
-    add_force(const ArrayView<const double> &p, const Support<dim> &support);
+    add_force(const ArrayView<const double> &p,
+              const Support<dim> &           support,
+              const Point<dim> &             x);
 
     MaterialPoints<dim> &           points;
     const GridBasis<dim> &          basis;

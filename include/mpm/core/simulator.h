@@ -105,6 +105,13 @@ namespace mpm
     report_progress(const bool force);
 
     /**
+     * An axisymmetric grid's boundary on x = 0 must be held across the
+     * axis (a Slip or Fixed boundary); the message says so if it is not.
+     */
+    void
+    check_axis() const;
+
+    /**
      * The output of the current state: points, grid (and the node cloud)
      * for ParaView, if written, and the walls' tractions.
      */

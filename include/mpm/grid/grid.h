@@ -131,6 +131,23 @@ namespace mpm
       return *mapping;
     }
 
+    /** Whether the scene is axisymmetric (Geometry), x the radius. */
+    bool
+    is_axisymmetric() const
+    {
+      return axisymmetric;
+    }
+
+    /**
+     * What a unit of 2D area or length at x stands for: the ring it sweeps
+     * about the axis, 2 pi x, in an axisymmetric scene; 1 otherwise.
+     */
+    double
+    ring_factor(const Point<dim> &x) const
+    {
+      return axisymmetric ? 2. * numbers::PI * x[0] : 1.;
+    }
+
     /** True if every cell of the grid is an axis-aligned box. */
     bool
     is_cartesian() const
@@ -259,6 +276,7 @@ namespace mpm
     std::vector<Point<dim>> node_positions;
     /** Indexed by active cell index; only locally owned entries are set. */
     std::vector<CellGeometry> cells;
+    bool                      axisymmetric        = false;
     bool                      all_cells_cartesian = true;
     double                    min_cell_size       = 0.;
   };

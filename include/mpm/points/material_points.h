@@ -161,6 +161,13 @@ namespace mpm
 
     BOOST_SERIALIZATION_SPLIT_MEMBER()
 
+    /** The grid the points live on. */
+    const Grid<dim> &
+    get_grid() const
+    {
+      return grid;
+    }
+
   private:
     /** Whether x lies beyond an outflow face of `cell`. */
     bool

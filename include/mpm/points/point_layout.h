@@ -15,7 +15,10 @@ namespace mpm
   /**
    * The named layout of a material point's properties in the
    * ParticleHandler. Stress is always the full symmetric 3x3 Cauchy stress
-   * (plane strain keeps sigma_zz); F is dim x dim (F_zz = 1 in plane strain).
+   * (plane strain keeps sigma_zz; in an axisymmetric scene zz is the hoop
+   * direction). F is dim x dim; a 2D point also carries F_zz, the
+   * out-of-plane stretch (1 in plane strain, the hoop stretch r / r_0 in
+   * axisymmetry).
    * `work density` is the stress work per unit reference volume, the
    * point's strain energy for elastic laws. Internal variables of the laws
    * follow; a scene sizes them to the largest law it uses. Scenes with an
@@ -31,7 +34,11 @@ namespace mpm
     static constexpr unsigned int reference_size       = 2;
     static constexpr unsigned int velocity             = reference_size + dim;
     static constexpr unsigned int deformation_gradient = velocity + dim;
-    static constexpr unsigned int stress = deformation_gradient + dim * dim;
+    /** F_zz of a 2D point; in 3D it is part of F and takes no slot. */
+    static constexpr unsigned int out_of_plane_stretch =
+      deformation_gradient + dim * dim;
+    static constexpr unsigned int stress =
+      out_of_plane_stretch + (dim == 2 ? 1 : 0);
     static constexpr unsigned int work_density       = stress + 6;
     static constexpr unsigned int body_id            = work_density + 1;
     static constexpr unsigned int material_id        = body_id + 1;
@@ -75,20 +82,52 @@ namespace mpm
           p[deformation_gradient + i * dim + j] = F[i][j];
     }
 
+    /** The full 3x3 F of a point, with its out-of-plane stretch in 2D. */
+    static Tensor<2, 3>
+    get_deformation_gradient_3d(const ArrayView<const double> &p)
+    {
+      return embed(get_deformation_gradient(p),
+                   dim == 2 ? p[out_of_plane_stretch] : 1.);
+    }
+
+    /** Store a 3x3 F: its dim x dim part, and F_zz in 2D. */
+    static void
+    set_deformation_gradient_3d(const ArrayView<double> &p,
+                                const Tensor<2, 3> &     F)
+    {
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = 0; j < dim; ++j)
+          p[deformation_gradient + i * dim + j] = F[i][j];
+      if (dim == 2)
+        p[out_of_plane_stretch] = F[2][2];
+    }
+
     /**
-     * The current volume of a point whose deformation gradient is F: the one
-     * place that says how a point's volume follows its motion.
+     * The current volume of a point whose 3x3 deformation gradient is F:
+     * the one place that says how a point's volume follows its motion.
      */
     static double
-    current_volume(const ArrayView<const double> &p, const Tensor<2, dim> &F)
+    current_volume(const ArrayView<const double> &p, const Tensor<2, 3> &F)
     {
       return determinant(F) * p[reference_volume];
+    }
+
+    /**
+     * The same for an in-plane F that leaves the point's out-of-plane
+     * stretch as it is (plane strain).
+     */
+    static double
+    current_volume_in_plane(const ArrayView<const double> &p,
+                            const Tensor<2, dim> &         F)
+    {
+      return current_volume(p,
+                            embed(F, dim == 2 ? p[out_of_plane_stretch] : 1.));
     }
 
     static double
     current_volume(const ArrayView<const double> &p)
     {
-      return current_volume(p, get_deformation_gradient(p));
+      return current_volume(p, get_deformation_gradient_3d(p));
     }
 
     /** Raw order of SymmetricTensor<2,3>: xx, yy, zz, xy, xz, yz. */

@@ -51,11 +51,7 @@ namespace mpm
                                   determinant(kinematics.F_new) * stress) *
                                  D;
 
-      Tensor<2, dim> F;
-      for (unsigned int i = 0; i < dim; ++i)
-        for (unsigned int j = 0; j < dim; ++j)
-          F[i][j] = kinematics.F_new[i][j];
-      Layout::set_deformation_gradient(p, F);
+      Layout::set_deformation_gradient_3d(p, kinematics.F_new);
       Layout::set_stress(p, stress);
       return material;
     }

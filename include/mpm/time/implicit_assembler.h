@@ -63,7 +63,7 @@ namespace mpm
       k.velocity_gradient = (Layout::embed(dF, 1.) -
                              Tensor<2, 3>(unit_symmetric_tensor<3>())) /
                             dt;
-      k.density = p[Layout::mass] / Layout::current_volume(p, F_new);
+      k.density = p[Layout::mass] / Layout::current_volume(p, k.F_new);
       return k;
     }
 
