@@ -16,13 +16,27 @@
 //   section 200) is (lambda + 2 mu) k R J_0(k R) = 2 mu J_1(k R), omega = k
 //   c_p. The hoop terms carry half of the stiffness of this mode: with
 //   the hoop force sigma_tt N_i / r left out, or the hoop rate v_r / r, the
-//   measured period is 2.01 times Love's (both planted, both fail).
+//   measured period is 2.01 times Love's (both planted, both fail);
+// - quasi-static, the same hoop terms with their tangent:
+//   - a long solid cylinder under a lateral pressure p with slip ends
+//     (scenes/pressed_cylinder.prm): the state is uniform, sigma_r =
+//     sigma_t = -p, so u_r = -p (1 + nu) (1 - 2 nu) r / E at every radius;
+//     checked within 1 % at mid-radius and on the outer face;
+//   - a thick-walled cylinder under internal pressure with slip ends
+//     (../prm/thick_cylinder.prm) against Lame's solution: sigma_r = A -
+//     B / r^2, sigma_t = A + B / r^2, A = p a^2 / (b^2 - a^2), B = A b^2,
+//     u_r = (1 + nu) / E ((1 - 2 nu) A r + B / r), within 2 % on both
+//     faces.
 
 #include <deal.II/base/mpi.h>
 
 #include <mpm/core/application.h>
 
 #include <cmath>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "tests.h"
 
@@ -117,5 +131,47 @@ main(int argc, char **argv)
     mpm_tests::check("breathing cylinder: the period of the fundamental "
                      "radial mode within 1 %",
                      std::abs(measured / period - 1.) < 0.01);
+  }
+
+  // Quasi-static: u_r of the tracked points (E = 1e7 Pa, nu = 0.3, p = 1e4
+  // Pa) against the closed forms.
+  const double E = 1e7, nu = 0.3, p = 1e4;
+  auto radial_displacement = [](mpm_tests::Columns &csv,
+                                const unsigned int k) {
+    const std::string x = "point" + std::to_string(k) + "_x";
+    return csv[x].back() - csv[x].front();
+  };
+  {
+    auto csv = mpm_tests::run_scene("scenes/pressed_cylinder.prm",
+                                    "output-pressed");
+    double largest = 0.;
+    for (const auto &[k, r] : {std::pair{0u, 0.09875}, {1u, 0.19875}})
+      {
+        const double exact = -p * (1. + nu) * (1. - 2. * nu) * r / E;
+        const double ratio = radial_displacement(csv, k) / exact;
+        deallog << "pressed cylinder, r = " << r << ": u_r / closed form = "
+                << ratio << std::endl;
+        largest = std::max(largest, std::abs(ratio - 1.));
+      }
+    mpm_tests::check("pressed cylinder: the uniform state's u_r within 1 %",
+                     largest < 0.01);
+  }
+  {
+    auto csv = mpm_tests::run_scene("../prm/thick_cylinder.prm",
+                                    "output-lame");
+    const double a = 0.1, b = 0.2;
+    const double A = p * a * a / (b * b - a * a), B = A * b * b;
+    double       largest = 0.;
+    for (const auto &[k, r] : {std::pair{0u, 0.10125}, {1u, 0.19875}})
+      {
+        const double exact = (1. + nu) / E * ((1. - 2. * nu) * A * r + B / r);
+        const double ratio = radial_displacement(csv, k) / exact;
+        deallog << "thick-walled cylinder, r = " << r
+                << ": u_r / Lame = " << ratio << std::endl;
+        largest = std::max(largest, std::abs(ratio - 1.));
+      }
+    mpm_tests::check("thick-walled cylinder: u_r of both faces within 2 % of "
+                     "Lame's",
+                     largest < 0.02);
   }
 }

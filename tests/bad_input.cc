@@ -193,9 +193,17 @@ main(int argc, char **argv)
                  "Bodies/block/Upper corner=0.75, 0.5, 0.75",
                  "Gravity=0, 0, 0"}));
   run_case("axisymmetric grid whose axis is not held", with({axisymmetric}));
-  run_case("axisymmetric quasi-static scene",
+  run_case("axisymmetric scene with a meshfree method",
            with({axisymmetric, "Time stepping/Scheme=quasi-static",
+                 "Method=GMM-MLS",
                  "Boundary conditions/Slip boundaries=left"}));
+  run_case("axisymmetric traction normal to the radius without a side",
+           with({axisymmetric, "Time stepping/Scheme=quasi-static",
+                 "Boundary conditions/Slip boundaries=left",
+                 "Loads/Traction=-1000, 0",
+                 "Loads/Traction normal=x",
+                 "Loads/Region lower corner=0.7, 0",
+                 "Loads/Region upper corner=0.75, 0.5"}));
   run_case("both a total force and a traction",
            with({"Time stepping/Scheme=quasi-static",
                  "Loads/Total force=0, -1",

@@ -5,7 +5,12 @@
 // cell, for the neo-Hookean law (analytical tangent) and the Hencky law
 // (tangent by central differences of the stress), in 2D and 3D;
 // and the internal forces of a point sum to zero (equilibrium of a single
-// integration point under a constant stress).
+// integration point under a constant stress). In 2D also as a ring of an
+// axisymmetric scene, at radius 0.4 with a hoop stretch of 1.1 already:
+// the hoop stretch of the step is 1 + u_r / r and the hoop terms join the
+// force and the tangent, which must still be its derivative (and, for
+// these hyperelastic laws, symmetric); the axial forces sum to zero, the
+// radial ones to the hoop force.
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/grid/grid_generator.h>
@@ -25,9 +30,10 @@ using namespace mpm;
 
 template <int dim>
 void
-test(const std::string &model)
+test(const std::string &model, const bool axisymmetric = false)
 {
-  deallog << "dim = " << dim << ", " << model << std::endl;
+  deallog << "dim = " << dim << ", " << model
+          << (axisymmetric ? ", axisymmetric" : "") << std::endl;
   ParameterHandler prm;
   Material::declare_parameters(prm);
   prm.set("Model", model);
@@ -79,6 +85,9 @@ test(const std::string &model)
     for (unsigned int d = 0; d < dim; ++d)
       u[d] = 0.05 * uniform(rng);
   const double V0 = 0.3;
+  // The ring's radius at the start of the step, and its hoop stretch then.
+  const double radius       = 0.4;
+  const double hoop_stretch = axisymmetric ? 1.1 : 1.;
 
   // Internal force and, optionally, tangent at a displacement increment.
   auto evaluate = [&](const std::vector<Tensor<1, dim>> &u,
@@ -86,9 +95,13 @@ test(const std::string &model)
                       FullMatrix<double> *               tangent) {
     const Tensor<2, dim> dF =
       PointAssembly<dim>::deformation_increment(support, u);
+    double u_r = 0.;
+    for (unsigned int i = 0; i < support.n_nodes; ++i)
+      u_r += support.N[i] * u[i][0];
+    const double   hoop = axisymmetric ? 1. + u_r / radius : 1.;
     StepKinematics k;
-    k.F_old = PointLayout<dim>::embed(F_n, 1.);
-    k.F_new = PointLayout<dim>::embed(dF * F_n, 1.);
+    k.F_old = PointLayout<dim>::embed(F_n, hoop_stretch);
+    k.F_new = PointLayout<dim>::embed(dF * F_n, hoop_stretch * hoop);
     k.dt    = 1.;
     const SymmetricTensor<2, 3> old_stress;
     SymmetricTensor<2, 3>       stress = old_stress;
@@ -98,11 +111,12 @@ test(const std::string &model)
     typename PointAssembly<dim>::Scratch scratch;
     PointAssembly<dim>::internal_force(support,
                                        &dF,
-                                       determinant(dF * F_n) * V0,
+                                       determinant(k.F_new) * V0,
                                        stress,
                                        &c,
                                        tangent,
-                                       scratch);
+                                       scratch,
+                                       axisymmetric ? radius * hoop : 0.);
     force = Vector<double>(scratch.force.begin(), scratch.force.end());
   };
 
@@ -110,15 +124,36 @@ test(const std::string &model)
   FullMatrix<double> tangent;
   evaluate(du, force, &tangent);
 
+  // A ring's radial forces sum to its hoop force, v sigma_tt / r.
+  double hoop_force = 0.;
+  if (axisymmetric)
+    {
+      const Tensor<2, dim> dF =
+        PointAssembly<dim>::deformation_increment(support, du);
+      double u_r = 0.;
+      for (unsigned int i = 0; i < support.n_nodes; ++i)
+        u_r += support.N[i] * du[i][0];
+      StepKinematics k;
+      k.F_old = PointLayout<dim>::embed(F_n, hoop_stretch);
+      k.F_new =
+        PointLayout<dim>::embed(dF * F_n, hoop_stretch * (1. + u_r / radius));
+      k.dt = 1.;
+      SymmetricTensor<2, 3> stress;
+      material->update_stress(k, stress, {});
+      hoop_force =
+        determinant(k.F_new) * V0 * stress[2][2] / (radius + u_r);
+    }
   double equilibrium = 0.;
   for (unsigned int a = 0; a < dim; ++a)
     {
-      double sum = 0.;
+      double sum = a == 0 ? -hoop_force : 0.;
       for (unsigned int i = 0; i < support.n_nodes; ++i)
         sum += force(i * dim + a);
       equilibrium = std::max(equilibrium, std::abs(sum));
     }
-  mpm_tests::check("internal forces of a point sum to zero",
+  mpm_tests::check(axisymmetric ? "internal forces of a ring sum to its "
+                                  "hoop force" :
+                                  "internal forces of a point sum to zero",
                    equilibrium < 1e-9 * force.l2_norm());
 
   // Central differences, column by column.
@@ -162,5 +197,6 @@ main(int argc, char **argv)
     {
       test<2>(model);
       test<3>(model);
+      test<2>(model, true);
     }
 }

@@ -26,25 +26,17 @@ namespace mpm
   {
     const double m = p[Layout::mass];
     // The supports are evaluated at the current positions: dF = I.
-    PointAssembly<dim>::internal_force(support,
-                                       nullptr,
-                                       Layout::current_volume(p),
-                                       Layout::get_stress(p),
-                                       nullptr,
-                                       nullptr,
-                                       scratch);
-    std::vector<double> &internal = scratch.force;
-    if (points.get_grid().is_axisymmetric())
-      {
-        // The hoop part of the ring's internal force, V sigma_tt N_i / r
-        // ([W] eq. 5, the fourth row of B).
-        const double hoop = Layout::current_volume(p) *
-                            p[Layout::stress + 2] /
-                            x[0];
-        for (unsigned int i = 0; i < support.n_nodes; ++i)
-          internal[i * dim] += hoop * support.N[i];
-      }
-    Tensor<1, dim> external = m * gravity;
+    PointAssembly<dim>::internal_force(
+      support,
+      nullptr,
+      Layout::current_volume(p),
+      Layout::get_stress(p),
+      nullptr,
+      nullptr,
+      scratch,
+      points.get_grid().is_axisymmetric() ? x[0] : 0.);
+    const std::vector<double> &internal = scratch.force;
+    Tensor<1, dim>             external = m * gravity;
     if (points.has_implicit_fields())
       for (unsigned int d = 0; d < dim; ++d)
         external[d] += p[points.point_load_index() + d];

@@ -22,6 +22,8 @@ namespace mpm
                                   const Tensor<1, dim> *       g,
                                   const double                 current_volume,
                                   const SymmetricTensor<4, 3> &c,
+                                  const double                 hoop_stress,
+                                  const double                 hoop_radius,
                                   FullMatrix<double> &         tangent,
                                   Scratch &                    scratch)
   {
@@ -64,6 +66,33 @@ namespace mpm
                 tangent(i * dim + a, k * dim + b) =
                   material + (a == b ? geometric : 0.);
               }
+        }
+    if (hoop_radius > 0.)
+      for (unsigned int i = 0; i < support.n_nodes; ++i)
+        {
+          const double h_i = support.N[i] / hoop_radius;
+          for (unsigned int k = 0; k < support.n_nodes; ++k)
+            {
+              const double h_k = support.N[k] / hoop_radius;
+              for (unsigned int b = 0; b < dim; ++b)
+                {
+                  // The hoop row of node i against component b of node k,
+                  // and the in-plane rows of node i against the hoop
+                  // column of node k.
+                  double row = 0., column = 0.;
+                  for (unsigned int q = 0; q < dim; ++q)
+                    {
+                      row += c[2][2][b][q] * g[k][q];
+                      column += c[b][q][2][2] * g[i][q];
+                    }
+                  tangent(i * dim, k * dim + b) +=
+                    current_volume * h_i * row;
+                  tangent(i * dim + b, k * dim) +=
+                    current_volume * column * h_k;
+                }
+              tangent(i * dim, k * dim) +=
+                current_volume * h_i * h_k * (c[2][2][2][2] + hoop_stress);
+            }
         }
   }
 

@@ -26,8 +26,16 @@ namespace mpm
                       "with l_p its edge along that axis, so the region "
                       "should hold one layer of points. A dead load (fixed "
                       "direction and reference area). Empty: no traction.");
-    prm.declare_entry("Traction normal", "y", Patterns::Selection("x|y|z"),
-                      "The axis normal to the loaded surface.");
+    prm.declare_entry("Traction normal", "y",
+                      Patterns::Selection("x|y|z|+x|-x|+y|-y|+z|-z"),
+                      "The axis normal to the loaded surface, and with a "
+                      "sign the side of each point's box that is the "
+                      "surface: +x its face at x_p + l_p / 2 (an outer "
+                      "surface), -x the one at x_p - l_p / 2. The sign "
+                      "matters only in an axisymmetric scene, for a "
+                      "surface normal to the radius, whose area is 2 pi "
+                      "r l_y at the face's radius r; there it must be "
+                      "given.");
     prm.declare_entry("Region lower corner", "", Patterns::Anything(),
                       "Lower corner of the box that selects the loaded "
                       "points.");
@@ -63,7 +71,9 @@ namespace mpm
         load        = is_traction ?
                         parse_point<dim>(traction, "Loads/Traction") :
                         parse_point<dim>(force, "Loads/Total force");
-        traction_normal = prm.get("Traction normal")[0] - 'x';
+        const std::string normal = prm.get("Traction normal");
+        traction_normal          = normal.back() - 'x';
+        traction_side = normal[0] == '+' ? 1 : normal[0] == '-' ? -1 : 0;
         if (traction_normal >= dim)
           throw InputError("Loads/Traction normal = z needs Dimension = 3.");
         region = std::make_unique<BoxShape<dim>>(
@@ -108,6 +118,15 @@ namespace mpm
       return;
     using Layout = PointLayout<dim>;
     auto inside  = [&](const Point<dim> &x) { return region->contains(x); };
+    const bool radial_surface = is_traction &&
+                                points.get_grid().is_axisymmetric() &&
+                                traction_normal == 0;
+    if (radial_surface && traction_side == 0)
+      throw InputError("Loads/Traction normal = x in an axisymmetric scene: "
+                       "say which face of the points' boxes is the loaded "
+                       "surface, +x (an outer surface) or -x (an inner "
+                       "one); its area is 2 pi r l_y at that face's "
+                       "radius.");
     double volume = 0.;
     for (const auto &particle : points.handler())
       if (inside(particle.get_location()))
@@ -122,9 +141,16 @@ namespace mpm
         {
           const ArrayView<double> p = particle.get_properties();
           const double            V = p[Layout::reference_volume];
-          const double            share =
+          double                  share =
             is_traction ? V / p[Layout::reference_size + traction_normal] :
                           V / volume;
+          // V / l_x is 2 pi x_p l_y; the face lies half a box away.
+          if (radial_surface)
+            {
+              const double x = particle.get_location()[0];
+              share *= (x + 0.5 * traction_side * p[Layout::reference_size]) /
+                       x;
+            }
           for (unsigned int d = 0; d < dim; ++d)
             p[points.point_load_index() + d] = load[d] * share;
         }

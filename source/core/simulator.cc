@@ -158,12 +158,10 @@ namespace mpm
       throw InputError("Boundary conditions/Friction boundaries act with "
                        "Method = MPM; the meshfree methods take Fixed, Slip "
                        "and Contact boundaries.");
-    if (grid->is_axisymmetric() && (scheme_name != "explicit" ||
-                                    method != "MPM"))
-      throw InputError("Grid/Geometry = axisymmetric runs with Time "
-                       "stepping/Scheme = explicit and Method = MPM; the "
-                       "quasi-static and Newmark forms and the meshfree "
-                       "methods are plane strain or 3D only.");
+    if (grid->is_axisymmetric() && method != "MPM")
+      throw InputError("Grid/Geometry = axisymmetric runs with Method = "
+                       "MPM; the meshfree methods are plane strain or 3D "
+                       "only.");
     obstacles =
       std::make_unique<RigidObstacles<dim>>(prm, names.obstacles, *grid);
     if (!obstacles->empty() && scheme_name != "explicit")

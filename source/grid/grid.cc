@@ -52,7 +52,7 @@ namespace mpm
       "boundary on the axis must be a Slip or Fixed boundary); each point "
       "is the ring it sweeps, so masses, forces, impulses and removed mass "
       "are those of the full ring (2 pi x), and sigma_zz is the hoop "
-      "stress. Axisymmetric scenes run with the explicit scheme and MPM. "
+      "stress. Axisymmetric scenes run with MPM in every scheme. "
       "3D scenes take plane strain (the default), which there means no "
       "reduction.");
     prm.declare_entry("Global refinements",

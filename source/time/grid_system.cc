@@ -159,7 +159,10 @@ namespace mpm
         const ArrayView<const double> p = particle.get_properties();
         volume += Layout::current_volume(p);
       }
-    return cell->measure() / volume;
+    // The cell's volume: in axisymmetry the ring it sweeps, 2 pi x_c A at
+    // its centroid x_c (Pappus).
+    return cell->measure() * grid.ring_factor(cell->barycenter()) /
+           volume;
   }
 
 

@@ -80,8 +80,11 @@ namespace mpm
               group.particles[q]->get_properties();
             const Tensor<2, dim>          dF =
               PointAssembly<dim>::deformation_increment(support, du);
-            const Tensor<2, dim> F_n = Layout::get_deformation_gradient(p);
-            const StepKinematics k = step_kinematics(dF, p, state.time_step);
+            const Point<dim> &position = group.particles[q]->get_location();
+            const double      hoop     = hoop_increment(
+              points.get_grid().is_axisymmetric(), support, du, position);
+            const StepKinematics k =
+              step_kinematics(dF, hoop, p, state.time_step);
             const Material &material =
               *materials[static_cast<unsigned int>(p[Layout::material_id])];
             const SymmetricTensor<2, 3> old_stress = Layout::get_stress(p);
@@ -102,11 +105,12 @@ namespace mpm
             PointAssembly<dim>::internal_force(
               support,
               &dF,
-              weight * Layout::current_volume_in_plane(p, dF * F_n),
+              weight * Layout::current_volume(p, k.F_new),
               stress,
               &c,
               with_tangent ? &own_tangent : nullptr,
-              scratch);
+              scratch,
+              points.get_grid().is_axisymmetric() ? hoop * position[0] : 0.);
             const std::vector<double> &point_force = scratch.force;
 
             for (unsigned int i = 0; i < support.n_nodes; ++i)

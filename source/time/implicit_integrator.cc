@@ -174,8 +174,15 @@ namespace mpm
             const ArrayView<double> p = particle->get_properties();
             const Tensor<2, dim>    dF =
               PointAssembly<dim>::deformation_increment(support, du);
-            const StepKinematics k =
-              ImplicitAssembler<dim>::step_kinematics(dF, p, state.time_step);
+            const StepKinematics k = ImplicitAssembler<dim>::step_kinematics(
+              dF,
+              ImplicitAssembler<dim>::hoop_increment(
+                points.get_grid().is_axisymmetric(),
+                support,
+                du,
+                particle->get_location()),
+              p,
+              state.time_step);
             PointState<dim>::commit(materials, k, p);
 
             Tensor<1, dim> displacement_at_point;

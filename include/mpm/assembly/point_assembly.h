@@ -60,6 +60,15 @@ namespace mpm
      * K_(i a)(k b) = v (c_(a c b d) g_i[c] g_k[d] + g_i . sigma . g_k
      * delta_ab), material plus geometric stiffness. In 2D the in-plane
      * blocks of the 3x3 stress and tangent are used (plane strain).
+     *
+     * A point of an axisymmetric scene gives its current radius r
+     * (`hoop_radius` > 0; 0 otherwise). Its zz is then the hoop direction,
+     * whose displacement gradient is u_r / r: a radial displacement of node
+     * i adds h_i = N_i / r to it. The force gains v sigma_tt h_i ([W] eq.
+     * 5), and the tangent the terms of that gradient entry: material v (h_i
+     * c_(tt b q) g_k[q] + c_(a p tt) g_i[p] h_k + h_i c_(tttt) h_k) and
+     * geometric v sigma_tt h_i h_k.
+     *
      * The force is left in `scratch.force`.
      */
     static void
@@ -69,7 +78,8 @@ namespace mpm
                    const SymmetricTensor<2, 3> & stress,
                    const SymmetricTensor<4, 3> *spatial_tangent,
                    FullMatrix<double> *          tangent,
-                   Scratch &                     scratch)
+                   Scratch &                     scratch,
+                   const double                  hoop_radius = 0.)
     {
       // Gradients in the current configuration: grad_x N = dF^-T grad_xn N.
       const Tensor<1, dim> *g = support.grad_N.data();
@@ -96,9 +106,21 @@ namespace mpm
             scratch.force[i * dim + a] = force[a];
         }
 
+      // The tangent's geometric part reads the in-plane force: the hoop
+      // force joins it after.
       if (tangent != nullptr)
-        add_tangent(
-          support, g, current_volume, *spatial_tangent, *tangent, scratch);
+        add_tangent(support,
+                    g,
+                    current_volume,
+                    *spatial_tangent,
+                    stress[2][2],
+                    hoop_radius,
+                    *tangent,
+                    scratch);
+      if (hoop_radius > 0.)
+        for (unsigned int i = 0; i < support.n_nodes; ++i)
+          scratch.force[i * dim] +=
+            current_volume * stress[2][2] * support.N[i] / hoop_radius;
     }
 
   private:
@@ -111,6 +133,8 @@ namespace mpm
                 const Tensor<1, dim> *       g,
                 const double                 current_volume,
                 const SymmetricTensor<4, 3> &c,
+                const double                 hoop_stress,
+                const double                 hoop_radius,
                 FullMatrix<double> &         tangent,
                 Scratch &                    scratch);
   };

@@ -55,6 +55,8 @@ namespace mpm
     bool           active = false;
     bool           is_traction = false;
     unsigned int   traction_normal = 1;
+    /** +1, -1: the loaded face is at x_p +- l_p / 2; 0: no side given. */
+    int            traction_side = 0;
     /** The points that start in it carry the load. */
     std::unique_ptr<Shape<dim>> region;
     /** Total force [N] or traction [Pa], at full load. */

@@ -112,18 +112,6 @@ namespace mpm
       return determinant(F) * p[reference_volume];
     }
 
-    /**
-     * The same for an in-plane F that leaves the point's out-of-plane
-     * stretch as it is (plane strain).
-     */
-    static double
-    current_volume_in_plane(const ArrayView<const double> &p,
-                            const Tensor<2, dim> &         F)
-    {
-      return current_volume(p,
-                            embed(F, dim == 2 ? p[out_of_plane_stretch] : 1.));
-    }
-
     static double
     current_volume(const ArrayView<const double> &p)
     {

@@ -44,27 +44,47 @@ namespace mpm
 
     /**
      * What the law sees of a step of the point with properties p by the
-     * deformation increment dF from its F_n: F_new = dF F_n, the velocity
+     * deformation increment dF from its F_n, with hoop_increment as its
+     * zz part (see hoop_increment()): F_new = dF F_n, the velocity
      * gradient L = (dF - I) / dt over the step (or load step, in
      * pseudo-time), so rate laws see their rate, and the density at F_new.
      */
     static StepKinematics
     step_kinematics(const Tensor<2, dim> &         dF,
+                    const double                   hoop_increment,
                     const ArrayView<const double> &p,
                     const double                   dt)
     {
-      using Layout                = PointLayout<dim>;
-      const Tensor<2, dim> F_n    = Layout::get_deformation_gradient(p);
-      const Tensor<2, dim> F_new  = dF * F_n;
-      StepKinematics       k;
-      k.F_old             = Layout::embed(F_n, 1.);
-      k.F_new             = Layout::embed(F_new, 1.);
+      using Layout               = PointLayout<dim>;
+      const Tensor<2, 3> dF_3d   = Layout::embed(dF, hoop_increment);
+      StepKinematics     k;
+      k.F_old             = Layout::get_deformation_gradient_3d(p);
+      k.F_new             = dF_3d * k.F_old;
       k.dt                = dt;
-      k.velocity_gradient = (Layout::embed(dF, 1.) -
-                             Tensor<2, 3>(unit_symmetric_tensor<3>())) /
-                            dt;
+      k.velocity_gradient =
+        (dF_3d - Tensor<2, 3>(unit_symmetric_tensor<3>())) / dt;
       k.density = p[Layout::mass] / Layout::current_volume(p, k.F_new);
       return k;
+    }
+
+    /**
+     * The out-of-plane part of a point's step: in an axisymmetric scene the
+     * hoop stretch r / r_n = 1 + u_r / r_n, with u_r the radial
+     * displacement at the point, which starts the step at `position`; 1
+     * otherwise.
+     */
+    static double
+    hoop_increment(const bool                         axisymmetric,
+                   const Support<dim> &               support,
+                   const std::vector<Tensor<1, dim>> &du,
+                   const Point<dim> &                 position)
+    {
+      if (!axisymmetric)
+        return 1.;
+      double u_r = 0.;
+      for (unsigned int i = 0; i < support.n_nodes; ++i)
+        u_r += support.N[i] * du[i][0];
+      return 1. + u_r / position[0];
     }
 
   private:
