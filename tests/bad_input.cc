@@ -193,6 +193,18 @@ main(int argc, char **argv)
                  "Bodies/block/Upper corner=0.75, 0.5, 0.75",
                  "Gravity=0, 0, 0"}));
   run_case("axisymmetric grid whose axis is not held", with({axisymmetric}));
+  run_case("axisymmetric axis that ends",
+           with({axisymmetric,
+                 "Boundary conditions/Slip boundaries=left until 0.005"}));
+  run_case("axisymmetric gravity along the radius",
+           with({axisymmetric, "Boundary conditions/Slip boundaries=left",
+                 "Gravity=-9.81, 0"}));
+  run_case("axisymmetric obstacle moving radially",
+           with({axisymmetric, "Boundary conditions/Slip boundaries=left",
+                 "Obstacles/Names=ram",
+                 "Obstacles/ram/Lower corner=0.8, 0.1",
+                 "Obstacles/ram/Upper corner=0.9, 0.2",
+                 "Obstacles/ram/Displacement=-0.1*t; 0"}));
   run_case("axisymmetric scene with a meshfree method",
            with({axisymmetric, "Time stepping/Scheme=quasi-static",
                  "Method=GMM-MLS",

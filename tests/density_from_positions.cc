@@ -1,5 +1,7 @@
 // The density from the point positions, Wieckowski (2004) eqs. 12-13 in
-// their Q1 form (NodalDensity), in 2D and 3D, on one or two ranks, with
+// their Q1 form (NodalDensity), in 2D, 3D and 2D axisymmetric (the body on
+// the axis; the density in the r-z plane, from the ring masses over 2 pi
+// x), on one or two ranks, with
 // Wieckowski's granular law seeded loose:
 // - a body of 1000 kg/m3 of a law whose reference density is 1500 starts
 //   stress-free at J = 1.5 (volumetric_strain = ln 1.5);
@@ -35,9 +37,10 @@ using namespace mpm;
 
 template <int dim>
 void
-test()
+test(const bool axisymmetric = false)
 {
-  deallog << "dim = " << dim << std::endl;
+  deallog << "dim = " << dim << (axisymmetric ? ", axisymmetric" : "")
+          << std::endl;
   const MPI_Comm comm   = MPI_COMM_WORLD;
   using Layout          = PointLayout<dim>;
   const double rho_ref  = 1500., rho = 1000.;
@@ -47,7 +50,9 @@ test()
   mpm_tests::parse_small_scene<dim>(
     prm,
     std::string("subsection Grid\n set Generator = subdivided_hyper_cube\n"
-                " set Arguments = 8 : 0 : 1 : false\nend\n"
+                " set Arguments = 8 : 0 : 1 : false\n") +
+    (axisymmetric ? " set Geometry = axisymmetric\n" : "") +
+    std::string("end\n"
                 "subsection material\n set Model = Wieckowski granular\n"
                 " set Density = 1500\n"
                 " subsection Wieckowski granular\n"
@@ -140,10 +145,12 @@ test()
       particle.set_location(motion(particle.get_location()));
     points.sort();
   };
+  // Halving the radius also halves the rings' hoop stretch.
   move_points([](const Point<dim> &x) { return Point<dim>(x / 2.); });
-  const double compressed = rho * (1 << dim);
+  const unsigned int inverse_J  = 1u << (axisymmetric ? dim + 1 : dim);
+  const double       compressed = rho * inverse_J;
   measure(compressed, density_error, stress_error, low, high);
-  deallog << "compressed by J = 1/" << (1 << dim) << ": rho_P in [" << low
+  deallog << "compressed by J = 1/" << inverse_J << ": rho_P in [" << low
           << ", " << high << "]" << std::endl;
   mpm_tests::check("compressed by J: rho_P = rho / J at every point to "
                    "1e-12",
@@ -183,4 +190,5 @@ main(int argc, char **argv)
   mpm_tests::initlog();
   test<2>();
   test<3>();
+  test<2>(true);
 }

@@ -1,4 +1,5 @@
 #include <mpm/assembly/nodal_density.h>
+#include <mpm/points/point_layout.h>
 
 namespace mpm
 {
@@ -33,6 +34,26 @@ namespace mpm
         }
     occupied_volume.compress(VectorOperation::add);
     occupied_volume.update_ghost_values();
+
+    if (!grid.is_axisymmetric())
+      return;
+    if (plane_mass.get_partitioner() != grid.node_partitioner())
+      plane_mass.reinit(grid.node_partitioner());
+    else
+      plane_mass = 0.;
+    Support<dim> support;
+    for (const auto &particle : handler)
+      {
+        basis.evaluate(particle.get_surrounding_cell()->active_cell_index(),
+                       particle.get_reference_location(),
+                       support);
+        const double m = particle.get_properties()[PointLayout<dim>::mass] /
+                         grid.ring_factor(particle.get_location());
+        for (unsigned int i = 0; i < support.n_nodes; ++i)
+          plane_mass.local_element(support.nodes[i]) += support.N[i] * m;
+      }
+    plane_mass.compress(VectorOperation::add);
+    plane_mass.update_ghost_values();
   }
 
 

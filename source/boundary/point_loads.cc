@@ -16,7 +16,8 @@ namespace mpm
     prm.declare_entry("Total force", "", Patterns::Anything(),
                       "Force at full load, one component per dimension, "
                       "spread over the points that start inside the region "
-                      "in proportion to their volume [N, N/m in 2D]. Empty: "
+                      "in proportion to their volume [N; N/m in plane "
+                      "strain; N on the full ring in axisymmetry]. Empty: "
                       "no force. Give this or Traction, not both.");
     prm.declare_entry("Traction", "", Patterns::Anything(),
                       "Traction at full load, one component per dimension "

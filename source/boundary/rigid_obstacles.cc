@@ -72,6 +72,12 @@ namespace mpm
                            prm.get("Displacement") + "' must have " +
                            std::to_string(dim) +
                            " ';'-separated components.");
+        if (grid.is_axisymmetric() && expressions[0] != "0")
+          throw InputError(path + "/Displacement = '" +
+                           prm.get("Displacement") +
+                           "': in an axisymmetric scene an obstacle is a "
+                           "body of revolution and moves along the axis "
+                           "only, so its x component must be 0.");
         obstacle.displacement = parse_function<1>(
           expressions, "t", Point<1>(), path + "/Displacement");
 

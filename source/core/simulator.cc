@@ -158,6 +158,10 @@ namespace mpm
       throw InputError("Boundary conditions/Friction boundaries act with "
                        "Method = MPM; the meshfree methods take Fixed, Slip "
                        "and Contact boundaries.");
+    if (grid->is_axisymmetric() && gravity[0] != 0.)
+      throw InputError("Gravity has an x component in an axisymmetric "
+                       "scene, where x is the radius: gravity must act "
+                       "along the axis, y.");
     if (grid->is_axisymmetric() && method != "MPM")
       throw InputError("Grid/Geometry = axisymmetric runs with Method = "
                        "MPM; the meshfree methods are plane strain or 3D "
@@ -341,14 +345,16 @@ namespace mpm
                                        1e-12 * cell->diameter();
               using Kind = typename DirichletConditions<dim>::WallKind;
               const Kind kind = dirichlet->kind_of(face->boundary_id());
-              if (on_axis && kind != Kind::slip && kind != Kind::fixed)
+              if (on_axis && ((kind != Kind::slip && kind != Kind::fixed) ||
+                              dirichlet->ends(face->boundary_id())))
                 unheld = true;
             }
     if (Utilities::MPI::logical_or(unheld, communicator))
       throw InputError("Grid/Geometry = axisymmetric: the grid's boundary "
-                       "on the axis (x = 0) is not held. Name it in "
-                       "Boundary conditions/Slip boundaries (the axis of "
-                       "symmetry: v_r = 0), or in Fixed boundaries.");
+                       "on the axis (x = 0) is not held for the whole "
+                       "run. Name it in Boundary conditions/Slip "
+                       "boundaries (the axis of symmetry: v_r = 0), or in "
+                       "Fixed boundaries, without 'until'.");
   }
 
 

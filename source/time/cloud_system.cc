@@ -294,9 +294,9 @@ namespace mpm
     for (const auto &group : state.groups)
       {
         const Support<dim> &support = group.supports[0];
-        const double reach =
-          this->reach_of(group.particles[0]->get_properties());
         const Point<dim> x_old = group.particles[0]->get_location();
+        const double     reach =
+          this->reach_of(group.particles[0]->get_properties(), x_old);
         Point<dim>       x_new = x_old;
         for (unsigned int k = 0; k < support.n_nodes; ++k)
           for (unsigned int a = 0; a < dim; ++a)

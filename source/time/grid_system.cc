@@ -362,8 +362,8 @@ namespace mpm
              this->points.handler().particles_in_cell(cell))
           {
             const ArrayView<const double> p = particle.get_properties();
-            const double reach = this->reach_of(p);
-            Point<dim> x = particle.get_location();
+            Point<dim>   x     = particle.get_location();
+            const double reach = this->reach_of(p, x);
             if (after_solve)
               {
                 basis.evaluate(cell->active_cell_index(),

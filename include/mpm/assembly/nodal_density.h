@@ -21,6 +21,13 @@ namespace mpm
    * centres of a regular subdivision of each cell the midpoint rule makes
    * both sums exact, so rho_P is the lattice's density everywhere,
    * on a free surface along grid lines too.
+   *
+   * In an axisymmetric scene the same holds for the density in the r-z
+   * plane: the nodal mass is then sum_P N_i m_P / (2 pi x_P), the rings'
+   * masses per radian and unit radius, over the plane nodal areas. (The
+   * ring masses over the ring volumes would not be exact: N_i x is
+   * quadratic, and next to the axis the midpoint rule is 12.5 % off with
+   * 2 x 2 points per cell.)
    */
   template <int dim>
   class NodalDensity
@@ -30,7 +37,8 @@ namespace mpm
 
     /**
      * The occupied nodal volumes of the cells that hold points of
-     * `handler`, summed across ranks (owned and ghost nodes).
+     * `handler`, summed across ranks (owned and ghost nodes); in an
+     * axisymmetric scene also the plane nodal masses.
      */
     void
     compute_occupied_volumes(const Particles::ParticleHandler<dim> &handler);
@@ -46,11 +54,13 @@ namespace mpm
       double density = 0.;
       for (unsigned int i = 0; i < support.n_nodes; ++i)
         {
-          const double volume =
-            occupied_volume.local_element(support.nodes[i]);
+          const unsigned int node   = support.nodes[i];
+          const double       volume = occupied_volume.local_element(node);
           if (volume > 0.)
             density += support.N[i] *
-                       nodes.values_of(support.nodes[i])[NodalLayout::mass] /
+                       (grid.is_axisymmetric() ?
+                          plane_mass.local_element(node) :
+                          nodes.values_of(node)[NodalLayout::mass]) /
                        volume;
         }
       return density;
@@ -60,6 +70,8 @@ namespace mpm
     const Grid<dim> &                          grid;
     const GridBasis<dim> &                     basis;
     LinearAlgebra::distributed::Vector<double> occupied_volume;
+    /** Axisymmetric scenes: sum_P N_i m_P / (2 pi x_P) at each node. */
+    LinearAlgebra::distributed::Vector<double> plane_mass;
   };
 } // namespace mpm
 

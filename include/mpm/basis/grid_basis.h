@@ -81,8 +81,7 @@ namespace mpm
     /**
      * The integrals of the cell's shape functions, int_c N_v dV, by the
      * 2^dim-point Gauss rule (exact on bilinear cells): V/4 on a 2D
-     * parallelogram. In an axisymmetric scene dV is the ring's, 2 pi x dA
-     * (still exact on rectangles).
+     * parallelogram.
      */
     void
     nodal_volumes(const unsigned int              active_cell_index,
@@ -98,12 +97,10 @@ namespace mpm
           for (unsigned int d = 0; d < dim; ++d)
             xi[d] = (q & (1u << d)) ? 0.5 + offset : 0.5 - offset;
           reference_values(xi, values, grad_ref);
-          const CellGeometry &cell   = grid.cell_geometry(active_cell_index);
-          Point<dim>          x;
-          for (unsigned int v = 0; v < n_vertices; ++v)
-            x += values[v] * cell.vertices[v];
-          const double weight = determinant(jacobian(cell, grad_ref)) *
-                                grid.ring_factor(x) / n_vertices;
+          const double weight =
+            determinant(jacobian(grid.cell_geometry(active_cell_index),
+                                 grad_ref)) /
+            n_vertices;
           for (unsigned int v = 0; v < n_vertices; ++v)
             volumes[v] += weight * values[v];
         }

@@ -64,6 +64,13 @@ namespace mpm
       return !end_times.empty();
     }
 
+    /** Whether the walls with this boundary id end during the run. */
+    bool
+    ends(const types::boundary_id id) const
+    {
+      return end_times.count(id) > 0;
+    }
+
     bool
     has_unilateral_nodes() const override
     {

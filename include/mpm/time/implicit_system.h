@@ -98,14 +98,18 @@ namespace mpm
     {}
 
     /**
-     * How far the material of a point reaches beyond it, half its spacing:
-     * the distance at which a wall holds it.
+     * How far the material of a point at x reaches beyond it, half its
+     * spacing: the distance at which a wall holds it. In an axisymmetric
+     * scene the spacing comes from the point's area, its ring volume over
+     * 2 pi x.
      */
-    static double
-    reach_of(const ArrayView<const double> &p)
+    double
+    reach_of(const ArrayView<const double> &p, const Point<dim> &x) const
     {
       using Layout = PointLayout<dim>;
-      return 0.5 * std::pow(Layout::current_volume(p), 1. / dim);
+      return 0.5 * std::pow(Layout::current_volume(p) /
+                              points.get_grid().ring_factor(x),
+                            1. / dim);
     }
 
     MaterialPoints<dim> &points;
