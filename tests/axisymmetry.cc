@@ -2,13 +2,15 @@
 // checked against closed forms:
 // - ring masses (scenes/falling_rings.prm): a solid core and a hollow
 //   cylinder beside the axis; the point masses sum to rho pi (R^2 H + (b^2 -
-//   a^2) H') to the time series' 12 digits, since a point stands for the ring its box
-//   sweeps, 2 pi x times the box (exact for a box centred on the point);
+//   a^2) H') to the time series' 12 digits, since a point stands for the
+//   ring its box sweeps, 2 pi x times the box (exact for a box centred on
+//   the point);
 // - free fall beside and on the axis: the momentum falls by M g per second
 //   and the centre of mass keeps its radius, to the series' digits (no
 //   stress, so no hoop force and no hoop rate);
-// - a breathing cylinder (scenes/breathing_cylinder.prm): a long elastic
-//   cylinder with slip ends, set moving in its fundamental radial mode.
+// - a breathing cylinder (scenes/breathing_cylinder.prm), explicit and
+//   Newmark: a long elastic cylinder with slip ends, set moving in its
+//   fundamental radial mode.
 //   The ring-mass-weighted centre of mass, sum m x / M, then swings as
 //   sin(omega t), and its zero crossings give the period. The frequency
 //   equation of the free radial vibration of a cylinder in plane strain
@@ -104,40 +106,50 @@ main(int argc, char **argv)
                      radius_gap < 1e-13);
   }
 
-  {
-    auto csv = mpm_tests::run_scene("scenes/breathing_cylinder.prm",
-                                    "output-breathing");
-    const double E = 1e7, nu = 0.3, rho = 1000., R = 0.5;
-    const double c_p =
-      std::sqrt(E * (1. - nu) / ((1. + nu) * (1. - 2. * nu)) / rho);
-    const double kR = breathing_root((1. - 2. * nu) / (1. - nu));
-    const double period = 2. * numbers::PI * R / (kR * c_p);
+  // Explicit, and Newmark (beta = 1/4, gamma = 1/2, dt = 0.2 ms: 64 steps
+  // a period, so its period error (omega dt)^2 / 12 is below 0.1 %).
+  for (const bool newmark : {false, true})
+    {
+      auto csv = mpm_tests::run_scene(
+        "scenes/breathing_cylinder.prm",
+        newmark ? "output-breathing-newmark" : "output-breathing",
+        newmark ? std::vector<std::string>{"Time stepping/Scheme=Newmark",
+                                           "Time stepping/Time step=2e-4"} :
+                  std::vector<std::string>{});
+      const double E = 1e7, nu = 0.3, rho = 1000., R = 0.5;
+      const double c_p =
+        std::sqrt(E * (1. - nu) / ((1. + nu) * (1. - 2. * nu)) / rho);
+      const double kR = breathing_root((1. - 2. * nu) / (1. - nu));
+      const double period = 2. * numbers::PI * R / (kR * c_p);
 
-    // Zero crossings of x_cm - x_cm(0), by linear interpolation.
-    const std::vector<double> &t = csv["time"];
-    const std::vector<double> &x = csv["centre_of_mass_x"];
-    std::vector<double>        crossings;
-    double                     amplitude = 0.;
-    for (unsigned int n = 1; n < t.size(); ++n)
-      {
-        const double a = x[n - 1] - x[0], b = x[n] - x[0];
-        amplitude      = std::max(amplitude, std::abs(b));
-        if (n > 1 && a * b < 0.)
-          crossings.push_back(t[n - 1] + (t[n] - t[n - 1]) * a / (a - b));
-      }
-    const double measured =
-      crossings.empty() ? 0. : 2. * crossings.back() / crossings.size();
-    deallog << "k R = " << kR << "; period " << measured << " s against "
-            << period << " s (" << crossings.size()
-            << " half periods, ratio " << measured / period
-            << "); centre of mass swings by " << amplitude << " m"
-            << std::endl;
-    mpm_tests::check("breathing cylinder: at least 6 half periods",
-                     crossings.size() >= 6);
-    mpm_tests::check("breathing cylinder: the period of the fundamental "
-                     "radial mode within 1 %",
-                     std::abs(measured / period - 1.) < 0.01);
-  }
+      // Zero crossings of x_cm - x_cm(0), by linear interpolation.
+      const std::vector<double> &t = csv["time"];
+      const std::vector<double> &x = csv["centre_of_mass_x"];
+      std::vector<double>        crossings;
+      double                     amplitude = 0.;
+      for (unsigned int n = 1; n < t.size(); ++n)
+        {
+          const double a = x[n - 1] - x[0], b = x[n] - x[0];
+          amplitude      = std::max(amplitude, std::abs(b));
+          if (n > 1 && a * b < 0.)
+            crossings.push_back(t[n - 1] + (t[n] - t[n - 1]) * a / (a - b));
+        }
+      const double measured =
+        crossings.empty() ? 0. : 2. * crossings.back() / crossings.size();
+      deallog << "k R = " << kR << "; period " << measured << " s against "
+              << period << " s (" << crossings.size()
+              << " half periods, ratio " << measured / period
+              << "); centre of mass swings by " << amplitude << " m"
+              << std::endl;
+      const std::string scheme = newmark ? " (Newmark)" : " (explicit)";
+      mpm_tests::check("breathing cylinder" + scheme +
+                         ": at least 6 half periods",
+                       crossings.size() >= 6);
+      mpm_tests::check("breathing cylinder" + scheme +
+                         ": the period of the fundamental radial mode within "
+                         "1 %",
+                       std::abs(measured / period - 1.) < 0.01);
+    }
 
   // Quasi-static: u_r of the tracked points (E = 1e7 Pa, nu = 0.3, p = 1e4
   // Pa) against the closed forms.
