@@ -114,8 +114,8 @@ namespace mpm
       prm.declare_entry("Dimension",
                         "2",
                         Patterns::Integer(2, 3),
-                        "Space dimension of the scene: 2 (plane strain) or "
-                        "3.");
+                        "Space dimension of the scene: 2 (plane strain, or "
+                        "axisymmetric with Grid/Geometry) or 3.");
       prm.enter_subsection("Materials");
       NamedSections::declare_names(
         prm,
