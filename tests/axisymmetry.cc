@@ -19,6 +19,13 @@
 //   c_p. The hoop terms carry half of the stiffness of this mode: with
 //   the hoop force sigma_tt N_i / r left out, or the hoop rate v_r / r, the
 //   measured period is 2.01 times Love's (both planted, both fail);
+// - a short cylinder settled on a friction floor (scenes/
+//   resting_cylinder.prm): the floor force is the full ring's weight M g,
+//   and the traction file's normal traction, each node's force over its
+//   ring area 2 pi h (2 x_i + x_j) / 6 per face, is rho g H between the
+//   axis and the rim within 5 % (the rough floor holds the base's Poisson
+//   expansion, so the pressure is not exactly uniform: 2.7 % measured; a
+//   plane area would be off by the factor 2 pi x);
 // - quasi-static, the same hoop terms with their tangent:
 //   - a long solid cylinder under a lateral pressure p with slip ends
 //     (scenes/pressed_cylinder.prm): the state is uniform, sigma_r =
@@ -41,6 +48,7 @@
 #include <mpm/core/application.h>
 
 #include <cmath>
+#include <filesystem>
 #include <map>
 #include <string>
 #include <utility>
@@ -150,6 +158,44 @@ main(int argc, char **argv)
                          "1 %",
                        std::abs(measured / period - 1.) < 0.01);
     }
+
+  // A cylinder at rest on a friction floor: the floor's force is the full
+  // ring's weight, and its traction file, force over each node's ring
+  // area, the pressure rho g H.
+  {
+    auto csv = mpm_tests::run_scene("scenes/resting_cylinder.prm",
+                                    "output-resting");
+    const double M = csv["mass"].back(), g = 9.81;
+    // The mean over the last 200 steps, once settled.
+    const std::vector<double> &N = csv["bottom_normal_force"];
+    double                     mean = 0.;
+    for (unsigned int n = N.size() - 200; n < N.size(); ++n)
+      mean += N[n] / 200.;
+    std::string last;
+    for (const auto &entry :
+         std::filesystem::directory_iterator("output-resting"))
+      if (entry.path().filename().string().rfind("bottom_tractions_", 0) ==
+            0 &&
+          entry.path().string() > last)
+        last = entry.path().string();
+    mpm_tests::Columns tractions = mpm_tests::read_csv(last);
+    const double       pressure  = 1000. * g * 0.1, h = 0.025, R = 0.3;
+    double             largest   = 0.;
+    for (unsigned int k = 0; k < tractions["x"].size(); ++k)
+      if (tractions["x"][k] > 0.5 * h && tractions["x"][k] < R - 0.5 * h)
+        largest = std::max(largest, std::abs(tractions["normal_traction"][k] /
+                                               pressure -
+                                             1.));
+    deallog << "resting cylinder: floor force / M g = " << mean / (M * g)
+            << "; floor pressure off rho g H by at most " << largest
+            << " between the axis and the rim" << std::endl;
+    mpm_tests::check("resting cylinder: the floor carries the ring's weight "
+                     "to 1e-6",
+                     std::abs(mean / (M * g) - 1.) < 1e-6);
+    mpm_tests::check("resting cylinder: the floor pressure is rho g H within "
+                     "5 % between the axis and the rim",
+                     largest < 0.05);
+  }
 
   // Quasi-static: u_r of the tracked points (E = 1e7 Pa, nu = 0.3, p = 1e4
   // Pa) against the closed forms.
