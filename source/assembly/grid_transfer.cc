@@ -56,9 +56,13 @@ namespace mpm
   GridTransfer<dim>::project_mass_momentum(const bool with_force)
   {
     nodes.begin_projection(0, NodalLayout::n_components);
+    if (nodal_density)
+      nodal_density->begin_projection();
     for_each_point([&](const auto &particle, const Support<dim> &support) {
       const ArrayView<const double> p = particle->get_properties();
       const double                  m = p[Layout::mass];
+      if (nodal_density)
+        nodal_density->add_point(support, m, particle->get_location());
       for (unsigned int i = 0; i < support.n_nodes; ++i)
         {
           const unsigned int node = support.nodes[i];

@@ -1,5 +1,4 @@
 #include <mpm/assembly/nodal_density.h>
-#include <mpm/points/point_layout.h>
 
 namespace mpm
 {
@@ -9,6 +8,21 @@ namespace mpm
     : grid(grid)
     , basis(basis)
   {}
+
+
+
+  template <int dim>
+  void
+  NodalDensity<dim>::begin_projection()
+  {
+    if (!grid.is_axisymmetric())
+      return;
+    // The grid may have changed since the last step.
+    if (plane_mass.get_partitioner() != grid.node_partitioner())
+      plane_mass.reinit(grid.node_partitioner());
+    else
+      plane_mass = 0.;
+  }
 
 
 
@@ -35,25 +49,11 @@ namespace mpm
     occupied_volume.compress(VectorOperation::add);
     occupied_volume.update_ghost_values();
 
-    if (!grid.is_axisymmetric())
-      return;
-    if (plane_mass.get_partitioner() != grid.node_partitioner())
-      plane_mass.reinit(grid.node_partitioner());
-    else
-      plane_mass = 0.;
-    Support<dim> support;
-    for (const auto &particle : handler)
+    if (grid.is_axisymmetric())
       {
-        basis.evaluate(particle.get_surrounding_cell()->active_cell_index(),
-                       particle.get_reference_location(),
-                       support);
-        const double m = particle.get_properties()[PointLayout<dim>::mass] /
-                         grid.ring_factor(particle.get_location());
-        for (unsigned int i = 0; i < support.n_nodes; ++i)
-          plane_mass.local_element(support.nodes[i]) += support.N[i] * m;
+        plane_mass.compress(VectorOperation::add);
+        plane_mass.update_ghost_values();
       }
-    plane_mass.compress(VectorOperation::add);
-    plane_mass.update_ghost_values();
   }
 
 

@@ -35,10 +35,30 @@ namespace mpm
   public:
     NodalDensity(const Grid<dim> &grid, const GridBasis<dim> &basis);
 
+    /** Before a projection of the mass: no plane nodal mass yet. */
+    void
+    begin_projection();
+
     /**
-     * The occupied nodal volumes of the cells that hold points of
-     * `handler`, summed across ranks (owned and ghost nodes); in an
-     * axisymmetric scene also the plane nodal masses.
+     * During it, in an axisymmetric scene: add the plane mass m / (2 pi
+     * x) of a point at x with this support.
+     */
+    void
+    add_point(const Support<dim> &support,
+              const double        mass,
+              const Point<dim> &  x)
+    {
+      if (!grid.is_axisymmetric())
+        return;
+      const double plane = mass / grid.ring_factor(x);
+      for (unsigned int i = 0; i < support.n_nodes; ++i)
+        plane_mass.local_element(support.nodes[i]) += support.N[i] * plane;
+    }
+
+    /**
+     * After it: the occupied nodal volumes of the cells that hold points of
+     * `handler`, and the plane nodal masses, summed across ranks (owned and
+     * ghost nodes).
      */
     void
     compute_occupied_volumes(const Particles::ParticleHandler<dim> &handler);

@@ -73,15 +73,6 @@ namespace mpm
       return F;
     }
 
-    static void
-    set_deformation_gradient(const ArrayView<double> &p,
-                             const Tensor<2, dim> &   F)
-    {
-      for (unsigned int i = 0; i < dim; ++i)
-        for (unsigned int j = 0; j < dim; ++j)
-          p[deformation_gradient + i * dim + j] = F[i][j];
-    }
-
     /** The full 3x3 F of a point, with its out-of-plane stretch in 2D. */
     static Tensor<2, 3>
     get_deformation_gradient_3d(const ArrayView<const double> &p)
