@@ -18,14 +18,18 @@ namespace mpm
     prm.declare_entry("Time series file", "time_series.csv",
                       Patterns::Anything(),
                       "CSV file (in the output directory) with time, "
-                      "energies, momentum, mass, centre of mass and tracked "
-                      "points.");
+                      "energies, momentum, mass, centre of mass, the "
+                      "material's extent and volume, tracked points and "
+                      "the forces on walls and obstacles.");
     prm.declare_entry("Time series interval", "0", Patterns::Double(0.),
                       "Simulated time between rows of the time series; 0 "
                       "writes every step.");
     prm.declare_entry("Tracked points", "", Patterns::Anything(),
                       "Positions, ';'-separated; the material point nearest "
-                      "to each at the start is followed in the time series.");
+                      "to each at the start is followed in the time series: "
+                      "its position, velocity, stress and the diagonal of "
+                      "F, with F_zz the thickness ratio h / h_0 in plane "
+                      "stress and the hoop stretch in axisymmetry.");
     prm.leave_subsection();
   }
 
@@ -94,12 +98,17 @@ namespace mpm
         file << ",points,max_speed";
         for (unsigned int d = 0; d < dim; ++d)
           file << ",min_" << axes[d] << ",max_" << axes[d];
+        file << ",volume";
         for (unsigned int k = 0; k < tracked_ids.size(); ++k)
           {
             for (unsigned int d = 0; d < dim; ++d)
               file << ",point" << k << "_" << axes[d];
             for (unsigned int d = 0; d < dim; ++d)
               file << ",point" << k << "_v" << axes[d];
+            for (const auto &[i, j] : tracked_stress_components())
+              file << ",point" << k << "_stress_" << axes[i] << axes[j];
+            for (unsigned int d = 0; d < 3; ++d)
+              file << ",point" << k << "_F_" << axes[d] << axes[d];
           }
         if (points.has_outflow())
           file << ",removed_mass,removed_points";
@@ -139,6 +148,18 @@ namespace mpm
 
 
   template <int dim>
+  std::vector<std::pair<unsigned int, unsigned int>>
+  TimeSeries<dim>::tracked_stress_components()
+  {
+    // In 2D sigma_xz = sigma_yz = 0.
+    if (dim == 2)
+      return {{0, 0}, {1, 1}, {2, 2}, {0, 1}};
+    return {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {0, 2}, {1, 2}};
+  }
+
+
+
+  template <int dim>
   Diagnostics<dim>
   TimeSeries<dim>::write_row(const double               time,
                              const unsigned int         step,
@@ -147,10 +168,13 @@ namespace mpm
   {
     using Layout = PointLayout<dim>;
     // Layout of the reduced buffer: 4 scalars, momentum, first moment of
-    // mass, then 2 dim values per tracked point (only its owner adds them).
-    const unsigned int  n_tracked = tracked_ids.size();
-    const unsigned int  tracked   = 4 + 2 * dim;
-    std::vector<double> sums(tracked + 2 * dim * n_tracked, 0.);
+    // mass, volume, then per tracked point (only its owner adds them) its
+    // position, velocity, stress and the diagonal of its 3x3 F.
+    const auto          components = tracked_stress_components();
+    const unsigned int  n_tracked  = tracked_ids.size();
+    const unsigned int  tracked    = 5 + 2 * dim;
+    const unsigned int  per_point  = 2 * dim + components.size() + 3;
+    std::vector<double> sums(tracked + per_point * n_tracked, 0.);
     // The largest speed, then -min and max of each coordinate: the extent
     // of the material (toe and height of a collapse).
     std::vector<double> largest(1 + 2 * dim,
@@ -176,13 +200,24 @@ namespace mpm
             sums[4 + d] += m * v[d];
             sums[4 + dim + d] += m * x[d];
           }
+        sums[4 + 2 * dim] += Layout::current_volume(p);
         for (unsigned int k = 0; k < n_tracked; ++k)
           if (particle.get_id() == tracked_ids[k])
-            for (unsigned int d = 0; d < dim; ++d)
-              {
-                sums[tracked + 2 * dim * k + d]       = x[d];
-                sums[tracked + 2 * dim * k + dim + d] = v[d];
-              }
+            {
+              double *values = &sums[tracked + per_point * k];
+              for (unsigned int d = 0; d < dim; ++d)
+                {
+                  values[d]       = x[d];
+                  values[dim + d] = v[d];
+                }
+              const SymmetricTensor<2, 3> stress = Layout::get_stress(p);
+              for (unsigned int c = 0; c < components.size(); ++c)
+                values[2 * dim + c] =
+                  stress[components[c].first][components[c].second];
+              const Tensor<2, 3> F = Layout::get_deformation_gradient_3d(p);
+              for (unsigned int d = 0; d < 3; ++d)
+                values[2 * dim + components.size() + d] = F[d][d];
+            }
       }
     MPI_Allreduce(MPI_IN_PLACE, sums.data(), sums.size(), MPI_DOUBLE, MPI_SUM,
                   communicator);
@@ -220,7 +255,7 @@ namespace mpm
         file << ',' << n_points << ',' << largest[0];
         for (unsigned int d = 0; d < dim; ++d)
           file << ',' << -largest[1 + 2 * d] << ',' << largest[2 + 2 * d];
-        for (unsigned int k = tracked; k < sums.size(); ++k)
+        for (unsigned int k = tracked - 1; k < sums.size(); ++k)
           file << ',' << sums[k];
         if (points.has_outflow())
           file << ',' << removed_mass << ',' << removed_points;

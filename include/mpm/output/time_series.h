@@ -13,6 +13,7 @@
 #include <fstream>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace mpm
@@ -42,7 +43,8 @@ namespace mpm
 
   /**
    * The CSV time series of a run: time, step, dt, the Diagnostics, the
-   * position and velocity of tracked points, and the forces that the nodal
+   * material's extent and volume, the position, velocity, stress and
+   * diagonal of F of tracked points, and the forces that the nodal
    * conditions report (on walls). A tracked point is the material point
    * nearest to a given position at the start.
    */
@@ -100,6 +102,10 @@ namespace mpm
     BOOST_SERIALIZATION_SPLIT_MEMBER()
 
   private:
+    /** The (i, j) of the stress components written per tracked point. */
+    static std::vector<std::pair<unsigned int, unsigned int>>
+    tracked_stress_components();
+
     /** Rank 0: cut the file to `length` bytes and open it to append. */
     void
     continue_file(const std::uint64_t length);
