@@ -216,6 +216,21 @@ main(int argc, char **argv)
                  "Loads/Traction normal=x",
                  "Loads/Region lower corner=0.7, 0",
                  "Loads/Region upper corner=0.75, 0.5"}));
+  const std::string plane_stress = "Grid/Geometry=plane stress";
+  run_case("plane stress in a 3D scene",
+           with({plane_stress, "Dimension=3",
+                 "Grid/Arguments=2 : 0 : 1 : true",
+                 "Grid/Generator=subdivided_hyper_cube",
+                 "Bodies/block/Lower corner=0.25, 0, 0.25",
+                 "Bodies/block/Upper corner=0.75, 0.5, 0.75",
+                 "Gravity=0, 0, 0"}));
+  run_case("plane stress with a negative thickness",
+           with({plane_stress, "Grid/Thickness=-0.002"}));
+  run_case("a thickness outside plane stress",
+           with({"Grid/Thickness=0.002"}));
+  run_case("plane stress with a law for loose fill",
+           with({plane_stress,
+                 "Materials/rubber/Model=Wieckowski granular"}));
   run_case("both a total force and a traction",
            with({"Time stepping/Scheme=quasi-static",
                  "Loads/Total force=0, -1",

@@ -123,7 +123,7 @@ namespace mpm
                                  material.density();
         // An axisymmetric point is the ring its area sweeps: 2 pi x times
         // the area (Pappus), exact for a box centred at the point.
-        const double volume = c.volume * grid.ring_factor(c.x);
+        const double volume = c.volume * grid.out_of_plane_measure(c.x);
         properties[Layout::mass]             = density * volume;
         properties[Layout::reference_volume] = volume;
         for (unsigned int d = 0; d < dim; ++d)
@@ -294,10 +294,13 @@ namespace mpm
           *materials[static_cast<unsigned int>(p[Layout::material_id])];
         const double depth = top[body] + down * particle.get_location();
         const double sigma_v = -material.density() * gravity.norm() * depth;
-        const SymmetricTensor<2, 3> stress =
+        SymmetricTensor<2, 3> stress =
           bodies[body].k0() * sigma_v *
             (unit_symmetric_tensor<3>() - vertical) +
           sigma_v * vertical;
+        // A plate's faces are free.
+        if (points.get_grid().is_plane_stress())
+          stress[2][2] = 0.;
         Layout::set_stress(p, stress);
         try
           {

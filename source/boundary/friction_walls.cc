@@ -131,10 +131,11 @@ namespace mpm
                 contact.wall     = w;
                 contact.outward += normal;
                 // int N_v dA over the face; in axisymmetry over the surface
-                // of revolution, 2 pi L (2 x_v + x_other) / 6 on a segment.
+                // of revolution, 2 pi L (2 x_v + x_other) / 6 on a segment;
+                // in plane stress over the plate's initial thickness.
                 double share = face->measure() / face->n_vertices();
-                if (grid.is_axisymmetric())
-                  share *= grid.ring_factor(
+                if (dim == 2)
+                  share *= grid.out_of_plane_measure(
                     Point<dim>((2. * face->vertex(v) + face->vertex(1 - v)) /
                                3.));
                 contact.area += share;

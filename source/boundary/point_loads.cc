@@ -17,7 +17,8 @@ namespace mpm
                       "Force at full load, one component per dimension, "
                       "spread over the points that start inside the region "
                       "in proportion to their volume [N; N/m in plane "
-                      "strain; N on the full ring in axisymmetry]. Empty: "
+                      "strain; N on the plate in plane stress; N on the "
+                      "full ring in axisymmetry]. Empty: "
                       "no force. Give this or Traction, not both.");
     prm.declare_entry("Traction", "", Patterns::Anything(),
                       "Traction at full load, one component per dimension "

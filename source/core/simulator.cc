@@ -162,6 +162,14 @@ namespace mpm
       throw InputError("Gravity has an x component in an axisymmetric "
                        "scene, where x is the radius: gravity must act "
                        "along the axis, y.");
+    for (const auto &material : materials)
+      if (grid->is_plane_stress() &&
+          (material->needs_density_from_positions() ||
+           material->stress_follows_density()))
+        throw InputError("Materials/" + material->name() + ": a law whose "
+                         "stress follows the density is for loose fill, "
+                         "not a plate; Grid/Geometry = plane stress takes "
+                         "the other laws.");
     if (grid->is_axisymmetric() && method != "MPM")
       throw InputError("Grid/Geometry = axisymmetric runs with Method = "
                        "MPM; the meshfree methods are plane strain or 3D "

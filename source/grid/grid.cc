@@ -45,9 +45,14 @@ namespace mpm
     prm.declare_entry(
       "Geometry",
       "plane strain",
-      Patterns::Selection("plane strain|axisymmetric"),
+      Patterns::Selection("plane strain|plane stress|axisymmetric"),
       "What a 2D scene stands for. plane strain: a slice of unit depth "
-      "(F_zz = 1, sigma_zz kept). axisymmetric: a body of revolution about "
+      "(F_zz = 1, sigma_zz kept). plane stress: a plate of initial "
+      "thickness Thickness, free on both faces (sigma_zz = 0 at every "
+      "point, met by its law, with F_zz = h / h_0 the thickness ratio, an "
+      "output); masses, volumes and forces are those of the plate, so "
+      "with Thickness = 1 they are per unit initial thickness. "
+      "axisymmetric: a body of revolution about "
       "the y axis, x the radius (the grid must lie in x >= 0, and a grid "
       "boundary on the axis must be a Slip or Fixed boundary); each point "
       "is the ring it sweeps, so masses, forces, impulses and removed mass "
@@ -55,6 +60,11 @@ namespace mpm
       "stress. Axisymmetric scenes run with MPM in every scheme. "
       "3D scenes take plane strain (the default), which there means no "
       "reduction.");
+    prm.declare_entry("Thickness",
+                      "1",
+                      Patterns::Double(),
+                      "The plate's initial thickness h_0 in plane stress "
+                      "[m]. Only with Geometry = plane stress.");
     prm.declare_entry("Global refinements",
                       "0",
                       Patterns::Integer(0, 20),
@@ -82,9 +92,22 @@ namespace mpm
     mesh_file     = prm.get("Mesh file");
     n_refinements = prm.get_integer("Global refinements");
     axisymmetric  = prm.get("Geometry") == "axisymmetric";
+    plane_stress  = prm.get("Geometry") == "plane stress";
     if (axisymmetric && dim != 2)
       throw InputError("Grid/Geometry = axisymmetric needs Dimension = 2 (x "
                        "the radius, y the axis).");
+    if (plane_stress && dim != 2)
+      throw InputError("Grid/Geometry = plane stress needs Dimension = 2 "
+                       "(a plate in the x-y plane).");
+    thickness = prm.get_double("Thickness");
+    if (!plane_stress && thickness != 1.)
+      throw InputError("Grid/Thickness is the plate's thickness in plane "
+                       "stress: set Grid/Geometry = plane stress, or leave "
+                       "Thickness at 1 (a plane-strain slice has unit "
+                       "depth).");
+    if (!(thickness > 0.) || !std::isfinite(thickness))
+      throw InputError("Grid/Thickness = " + prm.get("Thickness") +
+                       ": the plate's thickness must be positive.");
     for (const auto &entry :
          Utilities::split_string_list(prm.get("Boundary names"), ','))
       {

@@ -149,7 +149,8 @@ namespace mpm
   {
     const ArrayView<double> p = particle->get_properties();
     // In 3x3 form: in an axisymmetric scene L_tt = v_r / r, the hoop rate
-    // ([W]'s d_tt); in plane strain L_zz = 0.
+    // ([W]'s d_tt); in plane strain L_zz = 0, and in plane stress the
+    // point's law chooses it (PlaneStress) when the step is committed.
     const Tensor<2, 3> L = Layout::embed(
       transfer.velocity_gradient(support),
       grid.is_axisymmetric() ?
@@ -178,8 +179,18 @@ namespace mpm
       F_new,
       materials[static_cast<unsigned int>(p[Layout::material_id])]
         ->needs_density_from_positions());
+    if (!PointState<dim>::commit(materials,
+                                 kinematics,
+                                 p,
+                                 grid.is_plane_stress()))
+      {
+        report.record_failure(particle->get_location(),
+                              "no out-of-plane stretch of a material point "
+                              "gives sigma_zz = 0 (plane stress)");
+        return;
+      }
     const Material &material =
-      PointState<dim>::commit(materials, kinematics, p);
+      *materials[static_cast<unsigned int>(p[Layout::material_id])];
     report.max_signal_speed = std::max(
       report.max_signal_speed,
       material.signal_speed(Layout::get_stress(p),

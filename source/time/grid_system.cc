@@ -157,11 +157,16 @@ namespace mpm
     for (const auto &particle : this->points.handler().particles_in_cell(cell))
       {
         const ArrayView<const double> p = particle.get_properties();
-        volume += Layout::current_volume(p);
+        // In plane stress the points' volumes at their initial thickness:
+        // the cell holds them at their own thickness.
+        volume += Layout::current_volume(p) /
+                  (dim == 2 && grid.is_plane_stress() ?
+                     p[Layout::out_of_plane_stretch] :
+                     1.);
       }
     // The cell's volume: in axisymmetry the ring it sweeps, 2 pi x_c A at
-    // its centroid x_c (Pappus).
-    return cell->measure() * grid.ring_factor(cell->barycenter()) /
+    // its centroid x_c (Pappus); in plane stress A h_0.
+    return cell->measure() * grid.out_of_plane_measure(cell->barycenter()) /
            volume;
   }
 

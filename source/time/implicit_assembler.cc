@@ -5,6 +5,7 @@
 
 #include <mpm/assembly/point_assembly.h>
 #include <mpm/base/input_error.h>
+#include <mpm/materials/plane_stress.h>
 #include <mpm/time/implicit_assembler.h>
 
 #include <algorithm>
@@ -45,6 +46,8 @@ namespace mpm
     double internal_force_square = 0.;
     double momentum_rate_square  = 0.;
     bool   inverted              = false;
+    bool   out_of_plane_failed   = false;
+    const bool plane_stress = points.get_grid().is_plane_stress();
 
     FullMatrix<double>          cell_tangent;
     Vector<double>              cell_residual, cell_external;
@@ -83,8 +86,7 @@ namespace mpm
             const Point<dim> &position = group.particles[q]->get_location();
             const double      hoop     = hoop_increment(
               points.get_grid().is_axisymmetric(), support, du, position);
-            const StepKinematics k =
-              step_kinematics(dF, hoop, p, state.time_step);
+            StepKinematics k = step_kinematics(dF, hoop, p, state.time_step);
             const Material &material =
               *materials[static_cast<unsigned int>(p[Layout::material_id])];
             const SymmetricTensor<2, 3> old_stress = Layout::get_stress(p);
@@ -92,16 +94,24 @@ namespace mpm
               &p[Layout::internal_variables], material.n_internal_variables());
             SymmetricTensor<2, 3> stress = old_stress;
             internal.assign(old_internal.begin(), old_internal.end());
+            const ArrayView<double> new_internal(internal.data(),
+                                                 internal.size());
             if (!(determinant(k.F_new) > 0.))
               inverted = true;
-            else
-              material.update_stress(k,
-                                     stress,
-                                     ArrayView<double>(internal.data(),
-                                                       internal.size()));
+            else if (!plane_stress)
+              material.update_stress(k, stress, new_internal);
+            else if (!PlaneStress::update_stress(material,
+                                                 k,
+                                                 stress,
+                                                 new_internal))
+              out_of_plane_failed = true;
             SymmetricTensor<4, 3> c;
-            if (with_tangent && !inverted)
-              c = material.spatial_tangent(k, old_stress, old_internal);
+            if (with_tangent && !inverted && !out_of_plane_failed)
+              {
+                c = material.spatial_tangent(k, old_stress, old_internal);
+                if (plane_stress)
+                  c = PlaneStress::condense(c);
+              }
             PointAssembly<dim>::internal_force(
               support,
               &dF,
@@ -204,6 +214,10 @@ namespace mpm
     if (Utilities::MPI::logical_or(inverted, points.get_communicator()))
       throw RunError("A Newton iterate inverted a material point (det F <= "
                      "0).");
+    if (Utilities::MPI::logical_or(out_of_plane_failed,
+                                   points.get_communicator()))
+      throw RunError("At a Newton iterate no out-of-plane stretch of a "
+                     "material point gives sigma_zz = 0 (plane stress).");
     // Collective (compress) where some rank has a sliding node.
     if (state.keeps_unconstrained_residual &&
         Utilities::MPI::logical_or(!state.sliding_nodes.empty(),

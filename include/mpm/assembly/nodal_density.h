@@ -50,7 +50,7 @@ namespace mpm
     {
       if (!grid.is_axisymmetric())
         return;
-      const double plane = mass / grid.ring_factor(x);
+      const double plane = mass / grid.out_of_plane_measure(x);
       for (unsigned int i = 0; i < support.n_nodes; ++i)
         plane_mass.local_element(support.nodes[i]) += support.N[i] * plane;
     }

@@ -138,14 +138,22 @@ namespace mpm
       return axisymmetric;
     }
 
+    /** Whether the scene is a plate in plane stress (Geometry). */
+    bool
+    is_plane_stress() const
+    {
+      return plane_stress;
+    }
+
     /**
      * What a unit of 2D area or length at x stands for: the ring it sweeps
-     * about the axis, 2 pi x, in an axisymmetric scene; 1 otherwise.
+     * about the axis, 2 pi x, in an axisymmetric scene; the plate's initial
+     * thickness in plane stress; 1 otherwise (and in 3D).
      */
     double
-    ring_factor(const Point<dim> &x) const
+    out_of_plane_measure(const Point<dim> &x) const
     {
-      return axisymmetric ? 2. * numbers::PI * x[0] : 1.;
+      return axisymmetric ? 2. * numbers::PI * x[0] : thickness;
     }
 
     /** True if every cell of the grid is an axis-aligned box. */
@@ -277,6 +285,9 @@ namespace mpm
     /** Indexed by active cell index; only locally owned entries are set. */
     std::vector<CellGeometry> cells;
     bool                      axisymmetric        = false;
+    bool                      plane_stress        = false;
+    /** The plate's initial thickness in plane stress, 1 otherwise. */
+    double                    thickness           = 1.;
     bool                      all_cells_cartesian = true;
     double                    min_cell_size       = 0.;
   };

@@ -158,6 +158,12 @@ namespace mpm
       return rho;
     }
 
+    double
+    shear_modulus() const
+    {
+      return mu;
+    }
+
     /** lambda + 2 mu: with the density it gives the p-wave speed. */
     double
     p_wave_modulus() const

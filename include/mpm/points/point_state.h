@@ -2,7 +2,10 @@
 #define mpm_points_point_state_h
 
 #include <mpm/materials/material.h>
+#include <mpm/materials/plane_stress.h>
 #include <mpm/points/point_layout.h>
+
+#include <boost/container/small_vector.hpp>
 
 #include <memory>
 #include <vector>
@@ -24,23 +27,39 @@ namespace mpm
 
     /**
      * Commit the step described by `kinematics` (whose F_new must have
-     * det > 0) to the point's properties `p`. Returns the point's law, for
-     * callers that also need its signal speed.
+     * det > 0) to the point's properties `p`. In plane stress the law's
+     * update is PlaneStress's, which also chooses the zz part of the step;
+     * if that fails, p is left as it was and false is returned.
      */
-    static const Material &
+    static bool
     commit(const std::vector<std::unique_ptr<Material>> &materials,
-           const StepKinematics &                        kinematics,
-           const ArrayView<double> &                     p)
+           StepKinematics                                kinematics,
+           const ArrayView<double> &                     p,
+           const bool                                    plane_stress)
     {
       const Material &material =
         *materials[static_cast<unsigned int>(p[Layout::material_id])];
       SymmetricTensor<2, 3>       stress     = Layout::get_stress(p);
       const SymmetricTensor<2, 3> stress_old = stress;
-      material.update_stress(
-        kinematics,
-        stress,
-        ArrayView<double>(&p[Layout::internal_variables],
-                          material.n_internal_variables()));
+      const ArrayView<double>     internal(&p[Layout::internal_variables],
+                                       material.n_internal_variables());
+      if (plane_stress)
+        {
+          const boost::container::small_vector<double, 8> old_internal(
+            internal.begin(), internal.end());
+          if (!PlaneStress::update_stress(material,
+                                          kinematics,
+                                          stress,
+                                          internal))
+            {
+              std::copy(old_internal.begin(),
+                        old_internal.end(),
+                        internal.begin());
+              return false;
+            }
+        }
+      else
+        material.update_stress(kinematics, stress, internal);
 
       // Stress power per reference volume, tau : D with tau = J sigma, by
       // the trapezoidal rule.
@@ -53,7 +72,7 @@ namespace mpm
 
       Layout::set_deformation_gradient_3d(p, kinematics.F_new);
       Layout::set_stress(p, stress);
-      return material;
+      return true;
     }
   };
 } // namespace mpm

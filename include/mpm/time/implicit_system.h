@@ -108,7 +108,7 @@ namespace mpm
     {
       using Layout = PointLayout<dim>;
       return 0.5 * std::pow(Layout::current_volume(p) /
-                              points.get_grid().ring_factor(x),
+                              points.get_grid().out_of_plane_measure(x),
                             1. / dim);
     }
 
