@@ -2,6 +2,7 @@
 
 #include <boost/container/small_vector.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -35,8 +36,11 @@ namespace mpm
       J_given = J;
     };
 
-    double s = 1. - (old_stress[2][2] + dt * lambda * (L[0][0] + L[1][1])) /
-                      p_wave;
+    // A step that would thin the plate by half or more is no elastic
+    // step: Newton starts from half then.
+    double s = std::max(
+      1. - (old_stress[2][2] + dt * lambda * (L[0][0] + L[1][1])) / p_wave,
+      0.5);
     for (unsigned int iteration = 0; iteration < 30; ++iteration)
       {
         set_stretch(s);

@@ -19,7 +19,8 @@ namespace mpm
    * The first guess is the hypoelastic closed form, L_zz = -(sigma_zz,old /
    * dt + lambda (L_xx + L_yy)) / (lambda + 2 mu), exact for the Jaumann
    * laws in an elastic step (the in-plane spin leaves sigma_zz alone), so
-   * these take one evaluation. Otherwise a scalar Newton on s follows, with
+   * these take one evaluation; it is kept at s >= 1/2, and Newton keeps s
+   * within a factor 2 a step, so s stays positive. Otherwise a scalar Newton on s follows, with
    * the law's own consistent tangent: perturbing F_new by (I + h e_z e_z)
    * changes tau_zz by (c_tau_zzzz + 2 tau_zz) h, so d tau_zz / ds =
    * J (c_zzzz + 2 sigma_zz) / s.

@@ -99,16 +99,20 @@ namespace mpm
 
     /**
      * How far the material of a point at x reaches beyond it, half its
-     * spacing: the distance at which a wall holds it. In an axisymmetric
-     * scene the spacing comes from the point's area, its ring volume over
-     * 2 pi x.
+     * spacing: the distance at which a wall holds it. The spacing comes
+     * from the point's area: in an axisymmetric scene its ring volume over
+     * 2 pi x, in plane stress its volume over its thickness.
      */
     double
     reach_of(const ArrayView<const double> &p, const Point<dim> &x) const
     {
       using Layout = PointLayout<dim>;
+      const Grid<dim> &grid = points.get_grid();
       return 0.5 * std::pow(Layout::current_volume(p) /
-                              points.get_grid().out_of_plane_measure(x),
+                              grid.out_of_plane_measure(x) /
+                              (dim == 2 && grid.is_plane_stress() ?
+                                 p[Layout::out_of_plane_stretch] :
+                                 1.),
                             1. / dim);
     }
 
