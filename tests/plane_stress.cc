@@ -41,7 +41,6 @@
 #include <mpm/materials/plane_stress.h>
 
 #include <cmath>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -360,15 +359,7 @@ main(int argc, char **argv)
                           "Time stepping/Load steps=2",
                           "Newton/Check tangent=true"},
                          &screen);
-    std::istringstream lines(screen);
-    unsigned int       checks = 0, matching = 0;
-    for (std::string line; std::getline(lines, line);)
-      if (line.find("tangent check:") != std::string::npos)
-        {
-          ++checks;
-          matching += line.find("|K d| = ") != std::string::npos &&
-                      std::stod(line.substr(line.rfind(' ') + 1)) < 1e-6;
-        }
+    const auto [checks, matching] = mpm_tests::tangent_checks(screen, 1e-6);
     mpm_tests::check("MPM quasi-static plane stress: the assembled tangent "
                      "is the derivative of the residual at every iteration "
                      "(central differences, 1e-6)",

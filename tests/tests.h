@@ -19,6 +19,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace mpm_tests
@@ -186,6 +187,26 @@ namespace mpm_tests
    * yield surface: none here, but 4 of MPM's 125 checks to 0.4 s at a
    * perturbation three times as large. So 90 % must be below 1e-6.
    */
+  /**
+   * The `Newton/Check tangent` lines of a run's screen output: how many
+   * there are, and how many measured a gap below `tolerance` (a check not
+   * made counts as failed).
+   */
+  inline std::pair<unsigned int, unsigned int>
+  tangent_checks(const std::string &screen, const double tolerance)
+  {
+    std::istringstream lines(screen);
+    unsigned int       checks = 0, matching = 0;
+    for (std::string line; std::getline(lines, line);)
+      if (line.find("tangent check:") != std::string::npos)
+        {
+          ++checks;
+          matching += line.find("|K d| = ") != std::string::npos &&
+                      std::stod(line.substr(line.rfind(' ') + 1)) < tolerance;
+        }
+    return {checks, matching};
+  }
+
   inline void
   check_plastic_tangent(const std::string &method)
   {
@@ -200,16 +221,7 @@ namespace mpm_tests
                "Time stepping/End time=0.2",
                "Newton/Check tangent=true"},
               &screen);
-    std::istringstream lines(screen);
-    unsigned int       checks = 0, matching = 0;
-    for (std::string line; std::getline(lines, line);)
-      // Lines with a measured value; a check not made counts as failed.
-      if (line.find("tangent check:") != std::string::npos)
-        {
-          ++checks;
-          matching += line.find("|K d| = ") != std::string::npos &&
-                      std::stod(line.substr(line.rfind(' ') + 1)) < 1e-6;
-        }
+    const auto [checks, matching] = tangent_checks(screen, 1e-6);
     if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
       check(method + ": plastic column, 0.2 s: the assembled tangent is "
                      "the derivative of the residual (central differences, "
