@@ -111,16 +111,9 @@ namespace
         SymmetricTensor<2, 3> stress   = point.stress;
         std::vector<double>   internal = point.internal;
         const ArrayView<double> view(internal.data(), internal.size());
-        if (plane_stress)
-          {
-            AssertThrow(PlaneStress::update_stress(material,
-                                                   k,
-                                                   stress,
-                                                   view),
-                        ExcMessage("no plane-stress solution"));
-          }
-        else
-          material.update_stress(k, stress, view);
+        AssertThrow(PlaneStress::update_stress(
+                      material, k, stress, view, plane_stress),
+                    ExcMessage("no plane-stress solution"));
         if (!free_y || std::abs(stress[1][1]) <= 1e-9 * stress.norm() ||
             iterations == 20)
           {
@@ -226,7 +219,8 @@ main(int argc, char **argv)
                                              stress,
                                              ArrayView<double>(
                                                internal.data(),
-                                               internal.size())),
+                                               internal.size()),
+                                             true),
                   ExcMessage("no plane-stress solution"));
       return std::make_pair(SymmetricTensor<2, 3>(
                               determinant(step_k.F_new) * stress),

@@ -12,8 +12,14 @@ namespace mpm
   PlaneStress::update_stress(const Material &         material,
                              StepKinematics &         kinematics,
                              SymmetricTensor<2, 3> &  stress,
-                             const ArrayView<double> &internal_variables)
+                             const ArrayView<double> &internal_variables,
+                             const bool               plane_stress)
   {
+    if (!plane_stress)
+      {
+        material.update_stress(kinematics, stress, internal_variables);
+        return true;
+      }
     const SymmetricTensor<2, 3> old_stress = stress;
     const boost::container::small_vector<double, 8> old_internal(
       internal_variables.begin(), internal_variables.end());
@@ -38,29 +44,33 @@ namespace mpm
 
     // A step that would thin the plate by half or more is no elastic
     // step: Newton starts from half then.
+    const auto restore = [&]() {
+      stress = old_stress;
+      std::copy(old_internal.begin(),
+                old_internal.end(),
+                internal_variables.begin());
+    };
+
     double s = std::max(
       1. - (old_stress[2][2] + dt * lambda * (L[0][0] + L[1][1])) / p_wave,
       0.5);
     for (unsigned int iteration = 0; iteration < 30; ++iteration)
       {
         set_stretch(s);
-        stress = old_stress;
-        std::copy(old_internal.begin(),
-                  old_internal.end(),
-                  internal_variables.begin());
+        restore();
         material.update_stress(kinematics, stress, internal_variables);
         const double residual = stress[2][2];
         if (std::abs(residual) <= 1e-10 * stress.norm())
           return true;
         if (!std::isfinite(residual))
-          return false;
+          break;
 
         const SymmetricTensor<4, 3> c =
           material.spatial_tangent(kinematics, old_stress, old_view);
         const double J     = determinant(kinematics.F_new);
         const double slope = J * (c[2][2][2][2] + 2. * residual) / s;
         if (!(slope > 0.))
-          return false;
+          break;
         // Newton on tau_zz = J sigma_zz, kept within a factor 2 a step. A
         // correction below the round-off of s leaves sigma_zz at the
         // round-off of the update (a small stress reached from a large
@@ -71,6 +81,7 @@ namespace mpm
           return true;
         s = std::clamp(s - correction, 0.5 * s, 2. * s);
       }
+    restore();
     return false;
   }
 

@@ -168,17 +168,15 @@ namespace mpm
         return;
       }
 
+    const Material &material =
+      *materials[static_cast<unsigned int>(p[Layout::material_id])];
     StepKinematics kinematics;
     kinematics.F_old             = F_old;
     kinematics.F_new             = F_new;
     kinematics.velocity_gradient = L;
     kinematics.dt                = dt;
     kinematics.density           = transfer.density(
-      support,
-      p,
-      F_new,
-      materials[static_cast<unsigned int>(p[Layout::material_id])]
-        ->needs_density_from_positions());
+      support, p, F_new, material.needs_density_from_positions());
     if (!PointState<dim>::commit(materials,
                                  kinematics,
                                  p,
@@ -189,8 +187,6 @@ namespace mpm
                               "gives sigma_zz = 0 (plane stress)");
         return;
       }
-    const Material &material =
-      *materials[static_cast<unsigned int>(p[Layout::material_id])];
     report.max_signal_speed = std::max(
       report.max_signal_speed,
       material.signal_speed(Layout::get_stress(p),

@@ -98,12 +98,8 @@ namespace mpm
                                                  internal.size());
             if (!(determinant(k.F_new) > 0.))
               inverted = true;
-            else if (!plane_stress)
-              material.update_stress(k, stress, new_internal);
-            else if (!PlaneStress::update_stress(material,
-                                                 k,
-                                                 stress,
-                                                 new_internal))
+            else if (!PlaneStress::update_stress(
+                       material, k, stress, new_internal, plane_stress))
               out_of_plane_failed = true;
             SymmetricTensor<4, 3> c;
             if (with_tangent && !inverted && !out_of_plane_failed)

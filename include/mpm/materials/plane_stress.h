@@ -32,17 +32,20 @@ namespace mpm
   {
   public:
     /**
-     * Update `stress` and `internal_variables` from their old values by
-     * the law, choosing the zz parts of kinematics.F_new and of its
-     * velocity gradient (and scaling its density, if given, to the new
-     * volume). Returns false if Newton does not bring |sigma_zz| below
-     * 1e-10 of the stress in 30 iterations.
+     * The law's update of one point's step, the one call of every scheme:
+     * in plane stress (`plane_stress`) with sigma_zz = 0, choosing the zz
+     * parts of kinematics.F_new and of its velocity gradient (and scaling
+     * its density, if given, to the new volume); otherwise the law's own
+     * update. Returns false, with `stress` and `internal_variables` as
+     * they came in, if Newton does not bring |sigma_zz| below 1e-10 of
+     * the stress in 30 iterations.
      */
     static bool
     update_stress(const Material &         material,
                   StepKinematics &         kinematics,
                   SymmetricTensor<2, 3> &  stress,
-                  const ArrayView<double> &internal_variables);
+                  const ArrayView<double> &internal_variables,
+                  const bool               plane_stress);
 
     /**
      * The in-plane tangent with sigma_zz = 0 held: c_ijkl - c_ijzz c_zzkl

@@ -5,8 +5,6 @@
 #include <mpm/materials/plane_stress.h>
 #include <mpm/points/point_layout.h>
 
-#include <boost/container/small_vector.hpp>
-
 #include <memory>
 #include <vector>
 
@@ -41,25 +39,14 @@ namespace mpm
         *materials[static_cast<unsigned int>(p[Layout::material_id])];
       SymmetricTensor<2, 3>       stress     = Layout::get_stress(p);
       const SymmetricTensor<2, 3> stress_old = stress;
-      const ArrayView<double>     internal(&p[Layout::internal_variables],
-                                       material.n_internal_variables());
-      if (plane_stress)
-        {
-          const boost::container::small_vector<double, 8> old_internal(
-            internal.begin(), internal.end());
-          if (!PlaneStress::update_stress(material,
-                                          kinematics,
-                                          stress,
-                                          internal))
-            {
-              std::copy(old_internal.begin(),
-                        old_internal.end(),
-                        internal.begin());
-              return false;
-            }
-        }
-      else
-        material.update_stress(kinematics, stress, internal);
+      if (!PlaneStress::update_stress(
+            material,
+            kinematics,
+            stress,
+            ArrayView<double>(&p[Layout::internal_variables],
+                              material.n_internal_variables()),
+            plane_stress))
+        return false;
 
       // Stress power per reference volume, tau : D with tau = J sigma, by
       // the trapezoidal rule.
