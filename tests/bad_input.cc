@@ -104,6 +104,25 @@ main(int argc, char **argv)
            with({"Grid/Arguments=4, 4 : 0, 0 : 1, 1 : false"}));
   run_case("unknown grid generator", with({"Grid/Generator=hyper_banana"}));
   run_case("missing mesh file", with({"Grid/Mesh file=no_such_mesh.msh"}));
+  run_case("smooth shape functions on a grid of slanted cells",
+           with({"Grid/Shape functions=quadratic B-spline",
+                 "Grid/Generator=hyper_ball",
+                 "Grid/Arguments=0.5, 0.5 : 1 : false",
+                 "Boundary conditions/Fixed boundaries="}));
+  run_case("smooth shape functions on a grid that does not fill a box",
+           with({"Grid/Shape functions=uGIMP",
+                 "Grid/Generator=hyper_L",
+                 "Grid/Arguments=0 : 1 : false",
+                 "Grid/Global refinements=2",
+                 "Boundary conditions/Fixed boundaries="}));
+  run_case("smooth shape functions with a meshfree method",
+           with({"Time stepping/Scheme=quasi-static",
+                 "Method=GMM-LME",
+                 "Grid/Shape functions=cpGIMP"}));
+  run_case("smooth shape functions with an implicit scheme",
+           with({"Time stepping/Scheme=Newmark",
+                 "Time stepping/Time step=0.005",
+                 "Grid/Shape functions=quadratic B-spline"}));
   run_case("disk in 3D", with({"Dimension=3", "Bodies/block/Shape=disk",
                                "Grid/Arguments=2 : 0 : 1 : true",
                                "Grid/Generator=subdivided_hyper_cube",

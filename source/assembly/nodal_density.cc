@@ -36,15 +36,13 @@ namespace mpm
       occupied_volume.reinit(grid.node_partitioner());
     else
       occupied_volume = 0.;
-    std::array<double, GridBasis<dim>::n_vertices> volumes;
+    Support<dim> volumes;
     for (const auto &cell : grid.get_triangulation().active_cell_iterators())
       if (cell->is_locally_owned() && handler.n_particles_in_cell(cell) > 0)
         {
-          const unsigned int index = cell->active_cell_index();
-          basis.nodal_volumes(index, volumes);
-          for (unsigned int v = 0; v < volumes.size(); ++v)
-            occupied_volume.local_element(grid.node_of(index, v)) +=
-              volumes[v];
+          basis.cell_integrals(cell->active_cell_index(), volumes);
+          for (unsigned int i = 0; i < volumes.n_nodes; ++i)
+            occupied_volume.local_element(volumes.nodes[i]) += volumes.N[i];
         }
     occupied_volume.compress(VectorOperation::add);
     occupied_volume.update_ghost_values();

@@ -31,8 +31,8 @@ namespace mpm
 
     prm.declare_entry(
       "Method", "MPM", Patterns::Selection("MPM|GMM-MLS|GMM-LME"),
-      "MPM: the material point method, on the background grid's Q1 shape "
-      "functions. GMM-MLS, GMM-LME: the Galerkin meshfree method (Iaconeta "
+      "MPM: the material point method, on the background grid's shape "
+      "functions (Grid/Shape functions). GMM-MLS, GMM-LME: the Galerkin meshfree method (Iaconeta "
       "et al. 2017), on a cloud of nodes that starts at the grid vertices "
       "of the cells holding material and moves with it, with moving least "
       "squares or local max-entropy shape functions (see Meshfree). The "
@@ -40,6 +40,7 @@ namespace mpm
       "one rank.");
     MeshfreeBasis<dim>::declare_parameters(prm);
     Grid<dim>::declare_parameters(prm);
+    GridBasis<dim>::declare_parameters(prm);
     DirichletConditions<dim>::declare_parameters(prm);
     FrictionWalls<dim>::declare_parameters(prm);
     MaterialPoints<dim>::declare_parameters(prm);
@@ -170,6 +171,20 @@ namespace mpm
                          "stress follows the density is for loose fill, "
                          "not a plate; Grid/Geometry = plane stress takes "
                          "the other laws.");
+    const GridShapeFunctions shape_functions =
+      GridBasis<dim>::parse_kind(prm);
+    if (shape_functions != GridShapeFunctions::linear && method != "MPM")
+      throw InputError("Grid/Shape functions = " +
+                       GridBasis<dim>::name(shape_functions) +
+                       " are MPM's; with Method = " + method +
+                       " the shape functions are the meshfree ones (leave "
+                       "Shape functions at linear).");
+    if (shape_functions != GridShapeFunctions::linear &&
+        scheme_name != "explicit")
+      throw InputError("Grid/Shape functions = " +
+                       GridBasis<dim>::name(shape_functions) +
+                       " runs with Time stepping/Scheme = explicit; the "
+                       "quasi-static and Newmark schemes take linear.");
     if (grid->is_axisymmetric() && method != "MPM")
       throw InputError("Grid/Geometry = axisymmetric runs with Method = "
                        "MPM; the meshfree methods are plane strain or 3D "
@@ -189,7 +204,7 @@ namespace mpm
       check_axis();
     nodes = std::make_unique<GridNodes<dim>>(*grid);
     nodes->setup();
-    basis = std::make_unique<GridBasis<dim>>(*grid);
+    basis = std::make_unique<GridBasis<dim>>(*grid, shape_functions);
 
     // Every point carries as many internal variables as the largest law
     // needs, named after that law. Laws that share a variable keep it at

@@ -220,6 +220,12 @@ namespace mpm
     double min_edge  = std::numeric_limits<double>::max();
     for (const auto &cell : node_dof_handler.active_cell_iterators())
       {
+        // Shape functions that reach beyond a point's cell reach the nodes
+        // of ghost cells too.
+        if (cell->is_ghost())
+          for (unsigned int v = 0; v < n_vertices; ++v)
+            node_positions[node_of_dof(cell->vertex_dof_index(v, 0))] =
+              cell->vertex(v);
         if (!cell->is_locally_owned())
           continue;
         CellGeometry &data = cells[cell->active_cell_index()];

@@ -133,6 +133,7 @@ namespace mpm
             group.particles.push_back(particle);
             basis.evaluate(cell->active_cell_index(),
                            particle->get_reference_location(),
+                           particle->get_properties(),
                            group.supports[q]);
           }
       }
@@ -373,6 +374,7 @@ namespace mpm
               {
                 basis.evaluate(cell->active_cell_index(),
                                particle.get_reference_location(),
+                               p,
                                support);
                 for (unsigned int i = 0; i < support.n_nodes; ++i)
                   for (unsigned int a = 0; a < dim; ++a)

@@ -49,7 +49,10 @@ namespace mpm
         {
           const unsigned int cell =
             particle->get_surrounding_cell()->active_cell_index();
-          basis.evaluate(cell, particle->get_reference_location(), support);
+          basis.evaluate(cell,
+                         particle->get_reference_location(),
+                         particle->get_properties(),
+                         support);
           f(particle, support);
         }
     }

@@ -201,7 +201,7 @@ namespace mpm
       return partitioner->global_to_local(global_index);
     }
 
-    /** The position of a node of a locally owned cell. */
+    /** The position of a node of a locally owned or ghost cell. */
     const Point<dim> &
     node_position(const unsigned int node) const
     {
@@ -280,7 +280,7 @@ namespace mpm
     std::shared_ptr<const Utilities::MPI::Partitioner> partitioner;
     AffineConstraints<double>                          hanging_nodes;
 
-    /** By node id; set for the nodes of locally owned cells. */
+    /** By node id; set for the nodes of locally owned and ghost cells. */
     std::vector<Point<dim>> node_positions;
     /** Indexed by active cell index; only locally owned entries are set. */
     std::vector<CellGeometry> cells;

@@ -1,0 +1,185 @@
+// Explicit MPM with the smooth grid shape functions (Grid/Shape functions =
+// uGIMP, cpGIMP, quadratic B-spline), through the mpm command line, on one
+// and two ranks (the supports reach the nodes of ghost cells):
+// - a block thrown across cells at a constant velocity, 2D and 3D, and in
+//   free fall: a partition of unity gives every node the block's velocity,
+//   so the velocity gradient, the stress and the strain energy stay zero
+//   to round-off, momentum stays M v (M (v - g t) in free fall, which is
+//   MUSL's exact discrete solution), however the points cross cells;
+// - the vibrating bar of benchmarks.md section 7 on 64 cells, where the
+//   free end moves 40 % of a cell and Q1's cell-crossing error is 16-18 %
+//   of the amplitude (doc/benchmarks.md): the centre-of-mass velocity
+//   v0 cos(omega_1 t) / (beta_1 L) within 1 % over 40 s with every smooth
+//   kind, MUSL and USL (CFL 0.2); Q1 is run beside them and must be off by
+//   more than 10 %, which shows the case tells them apart;
+// - two elastic disks colliding (Sulsky et al. 1995) with B-splines:
+//   momentum stays zero to round-off, kinetic plus strain energy drifts by
+//   less than 3 %.
+
+#include <deal.II/base/mpi.h>
+
+#include <mpm/core/application.h>
+
+#include <cmath>
+
+#include "tests.h"
+
+using namespace dealii;
+
+const std::vector<std::string> smooth_kinds = {"uGIMP",
+                                               "cpGIMP",
+                                               "quadratic B-spline"};
+
+mpm_tests::Columns
+run_scene(const std::string &             scene,
+          const std::string &             name,
+          const std::vector<std::string> &settings)
+{
+  std::string directory = "output-" + name;
+  for (char &c : directory)
+    if (c == ' ')
+      c = '_';
+  return mpm_tests::run_scene(scene, directory, settings);
+}
+
+void
+thrown_block(const std::string &kind, const unsigned int dim, const double g)
+{
+  // tests/scenes/translating_block.prm, explicit: a neo-Hookean block
+  // thrown at (2, vy) (3D: (2, vy, 0.5)) across 4 cells of 0.25 m, down
+  // without gravity and up with it, so that it stays in the grid.
+  const std::string vy = g > 0. ? "1" : "-1";
+  std::vector<std::string> settings = {"Grid/Shape functions=" + kind,
+                                       "Time stepping/Scheme=explicit",
+                                       "Time stepping/Time step=0",
+                                       "Time stepping/End time=0.5",
+                                       "Output/Time series interval=0"};
+  if (dim == 2)
+    {
+      settings.push_back("Gravity=0, " + std::to_string(-g));
+      settings.push_back("Bodies/block/Initial velocity=2; " + vy);
+    }
+  else
+    {
+      settings.insert(settings.end(),
+                      {"Dimension=3",
+                       "Gravity=0, " + std::to_string(-g) + ", 0",
+                       "Grid/Arguments=12, 8, 4 : 0, 0, 0 : 3, 2, 1 : true",
+                       "Bodies/block/Lower corner=0.5, 1, 0.25",
+                       "Bodies/block/Upper corner=1.5, 1.5, 0.75",
+                       "Bodies/block/Initial velocity=2; " + vy + "; 0.5"});
+    }
+  auto csv = run_scene("scenes/translating_block.prm",
+                       "thrown-" + kind + "-" + std::to_string(dim) + "d-" +
+                         std::to_string(static_cast<int>(g)),
+                       settings);
+  const double M = csv["mass"][0];
+  double       momentum_error = 0., largest_strain_energy = 0.;
+  for (unsigned int n = 0; n < csv["time"].size(); ++n)
+    {
+      const double t = csv["time"][n];
+      momentum_error =
+        std::max({momentum_error,
+                  std::abs(csv["momentum_x"][n] - 2. * M),
+                  std::abs(csv["momentum_y"][n] -
+                           M * (std::stod(vy) - g * t))});
+      largest_strain_energy =
+        std::max(largest_strain_energy, std::abs(csv["strain_energy"][n]));
+    }
+  const double kinetic = csv["kinetic_energy"][0];
+  deallog << kind << ", " << dim << "D, g = " << g << ": "
+          << csv["time"].size() - 1 << " steps to t = " << csv["time"].back()
+          << ", moved " << std::setprecision(3)
+          << csv["centre_of_mass_x"].back() - csv["centre_of_mass_x"][0]
+          << std::setprecision(6) << " m along x" << std::endl;
+  mpm_tests::check(kind + ", " + std::to_string(dim) +
+                     "D block across cells: strain energy below 1e-20 of "
+                     "the kinetic energy",
+                   largest_strain_energy < 1e-20 * kinetic &&
+                     std::isfinite(largest_strain_energy));
+  mpm_tests::check(kind + ", " + std::to_string(dim) +
+                     "D block across cells: momentum M (v - g t) to 1e-10 M "
+                     "(the time series' 12 digits of t)",
+                   momentum_error < 1e-10 * M &&
+                     csv["time"].back() > 0.5 - 1e-12);
+}
+
+double
+vibrating_bar(const std::string &kind, const std::string &scheme)
+{
+  // 64 cells of 25/64 along the bar, one cell high, two beyond the free end.
+  const double L = 25., v0 = 0.1, beta = numbers::PI / (2. * L),
+               omega = beta * std::sqrt(100. / 1.), h = L / 64.;
+  auto csv = run_scene(
+    "../prm/vibrating_bar.prm",
+    "bar-" + kind + "-" + scheme,
+    {"Grid/Shape functions=" + kind,
+     "Grid/Arguments=66, 1 : 0, 0 : " + std::to_string(66 * h) + ", " +
+       std::to_string(h) + " : true",
+     "Bodies/bar/Upper corner=25, " + std::to_string(h),
+     "Time stepping/Update scheme=" + scheme,
+     "Time stepping/CFL number=0.2"});
+  const double amplitude = v0 / (beta * L);
+  double       error     = 0.;
+  for (unsigned int n = 0; n < csv["time"].size(); ++n)
+    error = std::max(error,
+                     std::abs(csv["momentum_x"][n] / csv["mass"][n] -
+                              amplitude * std::cos(omega * csv["time"][n])));
+  if (!(csv["time"].back() > 40. - 1e-9))
+    error = std::numeric_limits<double>::infinity();
+  deallog << "vibrating bar, 64 cells, " << kind << ", " << scheme
+          << ": error / amplitude " << std::setprecision(2)
+          << error / amplitude << std::setprecision(6) << std::endl;
+  return error / amplitude;
+}
+
+void
+two_disks(const std::string &kind)
+{
+  auto csv = run_scene("../prm/two_disks.prm",
+                       "disks-" + kind,
+                       {"Grid/Shape functions=" + kind});
+  const double e0 = csv["kinetic_energy"][0] + csv["strain_energy"][0];
+  double       drift = 0., momentum = 0.;
+  for (unsigned int n = 0; n < csv["time"].size(); ++n)
+    {
+      drift = std::max(drift,
+                       std::abs(csv["kinetic_energy"][n] +
+                                csv["strain_energy"][n] - e0));
+      momentum = std::max({momentum,
+                           std::abs(csv["momentum_x"][n]),
+                           std::abs(csv["momentum_y"][n])});
+    }
+  // m v0 of one disk (the kinetic energy is m v0^2, m = M / 2): the
+  // momentum scale.
+  const double scale =
+    std::sqrt(csv["kinetic_energy"][0] * csv["mass"][0] / 2.);
+  mpm_tests::check(kind + ", two disks: momentum zero to 1e-12 m v0",
+                   momentum < 1e-12 * scale);
+  mpm_tests::check(kind + ", two disks: energy drift below 3 %",
+                   drift < 0.03 * e0 && csv["time"].back() > 3. - 1e-9);
+}
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  mpm_tests::initlog();
+  for (const std::string &kind : smooth_kinds)
+    {
+      thrown_block(kind, 2, 0.);
+      thrown_block(kind, 2, 9.81);
+    }
+  thrown_block("quadratic B-spline", 3, 9.81);
+  thrown_block("cpGIMP", 3, 0.);
+
+  for (const std::string &kind : smooth_kinds)
+    for (const std::string scheme : {"MUSL", "USL"})
+      mpm_tests::check("vibrating bar, 64 cells, " + kind + ", " + scheme +
+                         ": within 1 % over 40 s",
+                       vibrating_bar(kind, scheme) < 0.01);
+  mpm_tests::check("vibrating bar, 64 cells, linear: off by more than 10 %",
+                   vibrating_bar("linear", "MUSL") > 0.1);
+
+  two_disks("quadratic B-spline");
+}
