@@ -119,10 +119,6 @@ main(int argc, char **argv)
            with({"Time stepping/Scheme=quasi-static",
                  "Method=GMM-LME",
                  "Grid/Shape functions=cpGIMP"}));
-  run_case("smooth shape functions with an implicit scheme",
-           with({"Time stepping/Scheme=Newmark",
-                 "Time stepping/Time step=0.005",
-                 "Grid/Shape functions=quadratic B-spline"}));
   run_case("disk in 3D", with({"Dimension=3", "Bodies/block/Shape=disk",
                                "Grid/Arguments=2 : 0 : 1 : true",
                                "Grid/Generator=subdivided_hyper_cube",

@@ -179,12 +179,6 @@ namespace mpm
                        " are MPM's; with Method = " + method +
                        " the shape functions are the meshfree ones (leave "
                        "Shape functions at linear).");
-    if (shape_functions != GridShapeFunctions::linear &&
-        scheme_name != "explicit")
-      throw InputError("Grid/Shape functions = " +
-                       GridBasis<dim>::name(shape_functions) +
-                       " runs with Time stepping/Scheme = explicit; the "
-                       "quasi-static and Newmark schemes take linear.");
     if (grid->is_axisymmetric() && method != "MPM")
       throw InputError("Grid/Geometry = axisymmetric runs with Method = "
                        "MPM; the meshfree methods are plane strain or 3D "

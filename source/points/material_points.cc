@@ -1,4 +1,5 @@
 #include <deal.II/base/mpi.h>
+#include <deal.II/grid/grid_tools.h>
 
 #include <boost/archive/binary_iarchive.hpp>
 #include <boost/archive/binary_oarchive.hpp>
@@ -60,6 +61,7 @@ namespace mpm
                        mapping,
                        Layout::n_properties(internal_variable_names.size()) +
                          (implicit_fields ? 2 * dim : 0))
+    , cell_cache(triangulation, mapping)
     , internal_names(internal_variable_names)
     , implicit_fields(implicit_fields)
   {
@@ -220,9 +222,14 @@ namespace mpm
   MaterialPoints<dim>::sort()
   {
     lost_positions.clear();
+    const MPI_Comm              comm     = get_communicator();
+    const types::particle_index n_before = Utilities::MPI::sum(
+      particle_handler.n_locally_owned_particles(), comm);
+    const types::particle_index removed_before = removed_points();
+    if (implicit_fields)
+      carry_far_points();
     particle_handler.sort_particles_into_subdomains_and_cells();
 
-    const MPI_Comm comm = get_communicator();
     const unsigned int n_lost =
       Utilities::MPI::sum(static_cast<unsigned int>(lost_positions.size()),
                           comm);
@@ -242,6 +249,109 @@ namespace mpm
                    "reach, or fix the boundary there.";
         throw RunError(message.str());
       }
+    // deal.II drops a point it sends towards an artificial cell without a
+    // signal: every point must be accounted for.
+    const types::particle_index n_after = Utilities::MPI::sum(
+      particle_handler.n_locally_owned_particles(), comm);
+    if (n_after + (removed_points() - removed_before) != n_before)
+      throw RunError("Sorting the material points lost " +
+                     std::to_string(n_before - n_after) +
+                     " of them between ranks (an internal error).");
+  }
+
+
+
+  template <int dim>
+  void
+  MaterialPoints<dim>::carry_far_points()
+  {
+    // Each far point as [id, x, properties], from every rank to every rank:
+    // such points are few (only large implicit steps make them).
+    const double h = grid.minimum_cell_size();
+    const unsigned int n_properties =
+      particle_handler.n_properties_per_particle();
+    const unsigned int record = 1 + dim + n_properties;
+    std::vector<double> own;
+    std::vector<typename Particles::ParticleHandler<dim>::particle_iterator>
+      far;
+    for (auto particle = particle_handler.begin();
+         particle != particle_handler.end();
+         ++particle)
+      {
+        const Point<dim> old = mapping.transform_unit_to_real_cell(
+          particle->get_surrounding_cell(), particle->get_reference_location());
+        const Point<dim> x = particle->get_location();
+        bool             is_far = false;
+        for (unsigned int d = 0; d < dim; ++d)
+          is_far = is_far || std::abs(x[d] - old[d]) > h;
+        if (!is_far)
+          continue;
+        far.push_back(particle);
+        own.push_back(static_cast<double>(particle->get_id()));
+        for (unsigned int d = 0; d < dim; ++d)
+          own.push_back(x[d]);
+        const ArrayView<const double> p = particle->get_properties();
+        own.insert(own.end(), p.begin(), p.end());
+      }
+    const MPI_Comm comm = get_communicator();
+    if (Utilities::MPI::sum(far.size(), comm) == 0)
+      return;
+
+    // Every rank claims the far points in its own cells; the lowest rank
+    // that claims a point takes it.
+    const std::vector<std::vector<double>> all =
+      Utilities::MPI::all_gather(comm, own);
+    const unsigned int this_rank = Utilities::MPI::this_mpi_process(comm);
+    const unsigned int n_ranks   = Utilities::MPI::n_mpi_processes(comm);
+    std::vector<unsigned int> claims;
+    std::vector<std::pair<typename Triangulation<dim>::active_cell_iterator,
+                          Point<dim>>>
+      found;
+    for (const auto &records : all)
+      for (unsigned int r = 0; r < records.size(); r += record)
+        {
+          Point<dim> x;
+          for (unsigned int d = 0; d < dim; ++d)
+            x[d] = records[r + 1 + d];
+          claims.push_back(n_ranks);
+          found.emplace_back();
+          // An invalid cell where no cell this rank sees holds x.
+          found.back() = GridTools::find_active_cell_around_point(cell_cache, x);
+          if (found.back().first.state() == IteratorState::valid &&
+              found.back().first->is_locally_owned())
+            claims.back() = this_rank;
+        }
+    std::vector<unsigned int> owners(claims.size());
+    Utilities::MPI::min(ArrayView<const unsigned int>(claims),
+                        comm,
+                        ArrayView<unsigned int>(owners));
+
+    // This rank's far points: the unclaimed ones have left the grid.
+    unsigned int first = 0;
+    for (unsigned int rank = 0; rank < this_rank; ++rank)
+      first += all[rank].size() / record;
+    for (unsigned int k = 0; k < far.size(); ++k)
+      if (owners[first + k] == n_ranks)
+        particle_handler.signals.particle_lost(far[k],
+                                               far[k]->get_surrounding_cell());
+    particle_handler.remove_particles(far);
+
+    unsigned int k = 0;
+    for (const auto &records : all)
+      for (unsigned int r = 0; r < records.size(); r += record, ++k)
+        if (owners[k] == this_rank)
+          {
+            Point<dim> x;
+            for (unsigned int d = 0; d < dim; ++d)
+              x[d] = records[r + 1 + d];
+            particle_handler.insert_particle(
+              x,
+              found[k].second,
+              static_cast<types::particle_index>(records[r]),
+              found[k].first,
+              ArrayView<const double>(&records[r + 1 + dim], n_properties));
+          }
+    particle_handler.update_cached_numbers();
   }
 
 

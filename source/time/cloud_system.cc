@@ -128,9 +128,9 @@ namespace mpm
     DynamicSparsityPattern dsp(state.relevant_dofs);
     for (const auto &group : state.groups)
       state.constraints.add_entries_local_to_global(group.dofs, dsp, true);
-    for (const unsigned int node : state.unreached_nodes)
+    for (const types::global_dof_index dof0 : state.unreached_node_dofs)
       for (unsigned int a = 0; a < dim; ++a)
-        dsp.add(node * dim + a, node * dim + a);
+        dsp.add(dof0 + a, dof0 + a);
     return dsp;
   }
 
@@ -152,14 +152,14 @@ namespace mpm
     for (const auto &group : state.groups)
       for (unsigned int k = 0; k < group.supports[0].n_nodes; ++k)
         reached[group.supports[0].nodes[k]] = true;
-    state.unreached_nodes.clear();
+    state.unreached_node_dofs.clear();
     for (unsigned int i = 0; i < n_nodes; ++i)
       if (!reached[i])
         {
           for (unsigned int a = 0; a < dim; ++a)
             state.constraints.add_line(i * dim + a);
           held[i].fill(false);
-          state.unreached_nodes.push_back(i);
+          state.unreached_node_dofs.push_back(i * dim);
         }
 
     if (meshfree->kind() == MeshfreeBasis<dim>::Kind::lme)

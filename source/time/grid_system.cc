@@ -9,8 +9,11 @@
 #include <mpm/base/input_error.h>
 #include <mpm/time/grid_system.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
+#include <map>
 #include <set>
 #include <tuple>
 
@@ -32,6 +35,16 @@ namespace mpm
       "cells); cells on the material's surface keep point volumes. MPM "
       "only: the meshfree methods always weigh point volumes, as Iaconeta "
       "et al. do.");
+    prm.declare_entry(
+      "Weak node fraction", "0.1", Patterns::Double(0., 1.),
+      "Smooth grid shape functions (Grid/Shape functions other than "
+      "linear) reach nodes outside the material that carry only a sliver "
+      "of it; Newton then moves them far and diverges. A node whose points "
+      "weigh less than this fraction of a cell's volume (sum over points "
+      "of N V) is tied to three strong nodes of a cell around it by linear "
+      "extrapolation, u_k = u_a + u_b - u_c across a face of the cell, "
+      "which keeps affine motions exact (extended B-splines, after "
+      "Yamaguchi, Moutsanidis and Bazilevs 2021). 0: no ties.");
     prm.leave_subsection();
   }
 
@@ -54,6 +67,7 @@ namespace mpm
   {
     prm.enter_subsection("Newton");
     scale_full_cells = prm.get("Integration") == "full cells by cell volume";
+    weak_fraction    = prm.get_double("Weak node fraction");
     prm.leave_subsection();
     fe_collection.push_back(FESystem<dim>(FE_Q<dim>(1), dim));
     fe_collection.push_back(FESystem<dim>(FE_Nothing<dim>(), dim));
@@ -68,14 +82,28 @@ namespace mpm
   GridSystem<dim>::setup(ImplicitState<dim> &state)
   {
     contact.begin_step();
-    // Unknowns only on cells that hold points.
+    // Unknowns only on the nodes that carry points: those of the cells
+    // that hold points (Q1), or, for shape functions that reach the cells
+    // around, of every cell with a node a point reaches (the nodes of
+    // those cells that no point reaches are held at zero).
+    if (basis.reaches_neighbours())
+      find_reached_nodes();
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
-        cell->set_active_fe_index(
-          this->points.handler().n_particles_in_cell(cell) > 0 ? 0 : 1);
+        {
+          bool carries = this->points.handler().n_particles_in_cell(cell) > 0;
+          if (basis.reaches_neighbours())
+            for (const unsigned int v : cell->vertex_indices())
+              carries = carries ||
+                        reached.local_element(grid.node_of(
+                          cell->active_cell_index(), v)) > 0.;
+          cell->set_active_fe_index(carries ? 0 : 1);
+        }
     dof_handler.distribute_dofs(fe_collection);
     state.owned_dofs = dof_handler.locally_owned_dofs();
     DoFTools::extract_locally_relevant_dofs(dof_handler, state.relevant_dofs);
+    number_node_dofs();
+    build_cell_groups(state);
 
     // Contact nodes stay engaged into the new step only while material
     // still touches them. The first step holds every node that material
@@ -98,15 +126,110 @@ namespace mpm
       }
     make_constraints(state);
 
-    const MPI_Comm         comm = this->points.get_communicator();
-    DynamicSparsityPattern dsp(state.relevant_dofs);
-    // Constrained rows keep their entries, so that releasing a contact node
-    // needs no new pattern.
-    DoFTools::make_sparsity_pattern(dof_handler, dsp, state.constraints, true);
+    const MPI_Comm comm = this->points.get_communicator();
+    // Rows for the masters of tied nodes too, which may lie beyond this
+    // rank's ghost cells.
+    IndexSet rows = state.relevant_dofs;
+    if (tie_masters.size() == rows.size())
+      rows.add_indices(tie_masters);
+    DynamicSparsityPattern dsp(rows);
+    // Every pair of nodes that share a point couples. Constrained rows
+    // keep their entries, so that releasing a contact node needs no new
+    // pattern.
+    for (const auto &group : state.groups)
+      state.constraints.add_entries_local_to_global(group.dofs, dsp, true);
+    for (const types::global_dof_index dof0 : state.unreached_node_dofs)
+      for (unsigned int a = 0; a < dim; ++a)
+        dsp.add(dof0 + a, dof0 + a);
     SparsityTools::distribute_sparsity_pattern(dsp, state.owned_dofs, comm,
                                                state.relevant_dofs);
     state.reinit(dsp, comm);
-    build_cell_groups(state);
+  }
+
+
+
+  template <int dim>
+  void
+  GridSystem<dim>::find_reached_nodes()
+  {
+    for (auto *vector : {&reached, &support_volume})
+      if (vector->get_partitioner() != grid.node_partitioner())
+        vector->reinit(grid.node_partitioner());
+      else
+        {
+          *vector = 0.;
+          vector->zero_out_ghost_values();
+        }
+    Support<dim> support;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const auto &particle :
+             this->points.handler().particles_in_cell(cell))
+          {
+            const ArrayView<const double> p = particle.get_properties();
+            basis.evaluate(cell->active_cell_index(),
+                           particle.get_reference_location(),
+                           p,
+                           support);
+            // In the plane: a ring's or a plate's volume over its ring or
+            // thickness, to compare with a cell's area.
+            const double volume =
+              PointLayout<dim>::current_volume(p) /
+              grid.out_of_plane_measure(particle.get_location());
+            for (unsigned int i = 0; i < support.n_nodes; ++i)
+              {
+                reached.local_element(support.nodes[i]) = 1.;
+                support_volume.local_element(support.nodes[i]) +=
+                  support.N[i] * volume;
+              }
+          }
+    reached.compress(VectorOperation::max);
+    reached.update_ghost_values();
+    support_volume.compress(VectorOperation::add);
+    support_volume.update_ghost_values();
+  }
+
+
+
+  template <int dim>
+  void
+  GridSystem<dim>::number_node_dofs()
+  {
+    node_dof.assign(grid.n_nodes(), numbers::invalid_dof_index);
+    for_each_unknown_vertex(
+      [&](const auto &cell, const unsigned int v, const unsigned int node) {
+        node_dof[node] = cell->vertex_dof_index(v, 0, 0);
+      },
+      true);
+  }
+
+
+
+  template <int dim>
+  template <typename Function>
+  void
+  GridSystem<dim>::for_each_unknown_vertex(const Function &f,
+                                           const bool      with_ghosts) const
+  {
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        if (!(cell->is_locally_owned() || (with_ghosts && cell->is_ghost())) ||
+            cell->active_fe_index() != 0)
+          continue;
+        // Grid::node_of knows owned cells only; a ghost cell's nodes are
+        // found through the node numbering (its relevant dofs).
+        const typename DoFHandler<dim>::active_cell_iterator node_cell(
+          &cell->get_triangulation(),
+          cell->level(),
+          cell->index(),
+          &grid.node_numbering());
+        for (const unsigned int v : cell->vertex_indices())
+          f(cell,
+            v,
+            cell->is_locally_owned() ?
+              grid.node_of(cell->active_cell_index(), v) :
+              grid.node_of_dof(node_cell->vertex_dof_index(v, 0)));
+      }
   }
 
 
@@ -115,16 +238,21 @@ namespace mpm
   void
   GridSystem<dim>::build_cell_groups(ImplicitState<dim> &state) const
   {
-    unsigned int n_groups = 0;
+    // A group's nodes are those its points reach, in the order met (for Q1
+    // the cell's vertices); each point's support is spread over them, with
+    // zeros at the nodes it does not reach.
+    unsigned int              n_groups = 0;
+    std::vector<unsigned int> nodes;
+    Support<dim>              own;
     for (const auto &cell : dof_handler.active_cell_iterators())
       {
-        if (!cell->is_locally_owned() || cell->active_fe_index() != 0)
+        if (!cell->is_locally_owned() ||
+            this->points.handler().n_particles_in_cell(cell) == 0)
           continue;
-        auto &group = state.next_group(n_groups);
-        group.dofs.resize(fe_collection[0].n_dofs_per_cell());
-        cell->get_dof_indices(group.dofs);
+        auto &group  = state.next_group(n_groups);
         group.weight = quadrature_scale(cell);
         group.supports.resize(this->points.handler().n_particles_in_cell(cell));
+        nodes.clear();
         unsigned int q = 0;
         const auto cell_points = this->points.handler().particles_in_cell(cell);
         for (auto particle = cell_points.begin(); particle != cell_points.end();
@@ -135,6 +263,37 @@ namespace mpm
                            particle->get_reference_location(),
                            particle->get_properties(),
                            group.supports[q]);
+            for (unsigned int i = 0; i < group.supports[q].n_nodes; ++i)
+              if (std::find(nodes.begin(),
+                            nodes.end(),
+                            group.supports[q].nodes[i]) == nodes.end())
+                nodes.push_back(group.supports[q].nodes[i]);
+          }
+        group.dofs.resize(nodes.size() * dim);
+        for (unsigned int i = 0; i < nodes.size(); ++i)
+          for (unsigned int a = 0; a < dim; ++a)
+            group.dofs[i * dim + a] = node_dof[nodes[i]] + a;
+        for (Support<dim> &support : group.supports)
+          {
+            if (support.n_nodes == nodes.size() &&
+                std::equal(nodes.begin(), nodes.end(), support.nodes.begin()))
+              continue;
+            own = support;
+            support.resize(nodes.size());
+            for (unsigned int i = 0; i < nodes.size(); ++i)
+              {
+                support.nodes[i]  = nodes[i];
+                support.N[i]      = 0.;
+                support.grad_N[i] = Tensor<1, dim>();
+              }
+            for (unsigned int j = 0; j < own.n_nodes; ++j)
+              {
+                const unsigned int i =
+                  std::find(nodes.begin(), nodes.end(), own.nodes[j]) -
+                  nodes.begin();
+                support.N[i]      = own.N[j];
+                support.grad_N[i] = own.grad_N[j];
+              }
           }
       }
     state.groups.resize(n_groups);
@@ -147,7 +306,9 @@ namespace mpm
   GridSystem<dim>::quadrature_scale(
     const typename DoFHandler<dim>::active_cell_iterator &cell) const
   {
-    if (!scale_full_cells)
+    // Smooth shape functions reach beyond the cell: the cell is not their
+    // domain of integration.
+    if (!scale_full_cells || basis.reaches_neighbours())
       return 1.;
     // Neighbours (owned or ghost) that hold points carry FE_Q.
     for (const unsigned int f : cell->face_indices())
@@ -226,6 +387,30 @@ namespace mpm
         unsupported_corner = true;
     });
     // Decided on all ranks together, so that all stop.
+    if (weak_fraction > 0. && basis.reaches_neighbours())
+      tie_weak_nodes(state);
+
+    // Nodes of cells with unknowns that no point reaches carry nothing:
+    // held at zero.
+    state.unreached_node_dofs.clear();
+    if (basis.reaches_neighbours())
+      {
+        // A node is met once per cell around it.
+        std::vector<bool> met(grid.n_nodes(), false);
+        for_each_unknown_vertex(
+          [&](const auto &, const unsigned int, const unsigned int node) {
+            if (reached.local_element(node) != 0. || met[node])
+              return;
+            met[node]                          = true;
+            const types::global_dof_index dof0 = node_dof[node];
+            for (unsigned int a = 0; a < dim; ++a)
+              if (!state.constraints.is_constrained(dof0 + a))
+                state.constraints.add_line(dof0 + a);
+            if (state.owned_dofs.is_element(dof0))
+              state.unreached_node_dofs.push_back(dof0);
+          },
+          true);
+      }
     if (Utilities::MPI::logical_or(unsupported_corner,
                                    this->points.get_communicator()))
       throw RunError("Boundary conditions: the implicit schemes support "
@@ -238,46 +423,192 @@ namespace mpm
 
 
   template <int dim>
+  void
+  GridSystem<dim>::tie_weak_nodes(ImplicitState<dim> &state) const
+  {
+    // A node is weak where its points weigh less than the fraction of a
+    // cell's area (volume in 3D). Each rank proposes ties for the weak
+    // nodes in the lattice patches of its cells that hold points, whose
+    // nodes it sees: along a lattice line, u_k = 2 u_a - u_b, or across a
+    // lattice square, u_k = u_a + u_b - u_c, with strong masters. Every
+    // rank then takes, of all proposals for a node, the one whose weakest
+    // master is the strongest (equal ones, to round-off, by the stencil's
+    // direction, which does not depend on the numbering), so that all
+    // ranks agree, and one and two ranks alike.
+    const NodeLattice<dim> &lattice   = basis.node_lattice();
+    const double            threshold =
+      weak_fraction * grid.get_triangulation().begin_active()->measure();
+    const auto strength = [&](const unsigned int node) {
+      return node == NodeLattice<dim>::no_node ||
+                 reached.local_element(node) == 0. ?
+               -1. :
+               support_volume.local_element(node);
+    };
+    // Per proposal, by the node's first dof: worth, the stencil's
+    // direction code and its masters' first dofs (the third -1 for a
+    // line), as doubles for one all_gather.
+    std::map<types::global_dof_index, std::array<double, 5>> proposals;
+    const auto propose = [&](const unsigned int                 node,
+                             const std::array<unsigned int, 3> &masters,
+                             const unsigned int                 n_masters,
+                             const unsigned int                 code) {
+      double worth = std::numeric_limits<double>::max();
+      for (unsigned int k = 0; k < n_masters; ++k)
+        worth = std::min(worth, strength(masters[k]));
+      if (worth < threshold)
+        return;
+      std::array<double, 5> proposal = {
+        worth,
+        static_cast<double>(code),
+        static_cast<double>(node_dof[masters[0]]),
+        static_cast<double>(node_dof[masters[1]]),
+        n_masters == 3 ? static_cast<double>(node_dof[masters[2]]) : -1.};
+      auto [entry, inserted] = proposals.emplace(node_dof[node], proposal);
+      if (!inserted && better(proposal, entry->second))
+        entry->second = proposal;
+    };
+    constexpr unsigned int width = NodeLattice<dim>::patch_width;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        if (!cell->is_locally_owned() ||
+            this->points.handler().n_particles_in_cell(cell) == 0)
+          continue;
+        const auto &patch = lattice.cell(cell->active_cell_index()).nodes;
+        for (unsigned int j = 0; j < NodeLattice<dim>::n_patch_nodes; ++j)
+          {
+            const unsigned int node = patch[j];
+            if (node == NodeLattice<dim>::no_node ||
+                reached.local_element(node) == 0. ||
+                !(support_volume.local_element(node) < threshold))
+              continue;
+            std::array<int, dim> index;
+            for (unsigned int d = 0, rest = j; d < dim; ++d, rest /= width)
+              index[d] = rest % width;
+            // The patch node at index + the offsets, or none.
+            const auto at = [&](const std::array<int, dim> &offset) {
+              unsigned int k = 0, stride = 1;
+              for (unsigned int d = 0; d < dim; ++d, stride *= width)
+                {
+                  const int i = index[d] + offset[d];
+                  if (i < 0 || i >= static_cast<int>(width))
+                    return NodeLattice<dim>::no_node;
+                  k += i * stride;
+                }
+              return patch[k];
+            };
+            for (unsigned int d1 = 0; d1 < dim; ++d1)
+              for (const int s1 : {-1, 1})
+                {
+                  std::array<int, dim> one{}, two{};
+                  one[d1] = s1;
+                  two[d1] = 2 * s1;
+                  const unsigned int line = 2 * d1 + (s1 > 0);
+                  propose(node, {at(one), at(two), 0}, 2, line);
+                  for (unsigned int d2 = d1 + 1; d2 < dim; ++d2)
+                    for (const int s2 : {-1, 1})
+                      {
+                        std::array<int, dim> other{}, both = one;
+                        other[d2] = s2;
+                        both[d2]  = s2;
+                        propose(node,
+                                {at(one), at(other), at(both)},
+                                3,
+                                2 * dim + 4 * (dim * d1 + d2) + 2 * line +
+                                  (s2 > 0));
+                      }
+                }
+          }
+      }
+
+    std::vector<double> own;
+    for (const auto &[dof, proposal] : proposals)
+      {
+        own.push_back(static_cast<double>(dof));
+        own.insert(own.end(), proposal.begin(), proposal.end());
+      }
+    std::map<types::global_dof_index, std::array<double, 5>> chosen;
+    for (const auto &rank_proposals :
+         Utilities::MPI::all_gather(this->points.get_communicator(), own))
+      for (unsigned int t = 0; t < rank_proposals.size(); t += 6)
+        {
+          const auto dof = static_cast<types::global_dof_index>(
+            rank_proposals[t]);
+          if (!state.relevant_dofs.is_element(dof))
+            continue;
+          std::array<double, 5> proposal;
+          std::copy(&rank_proposals[t + 1],
+                    &rank_proposals[t + 6],
+                    proposal.begin());
+          auto [entry, inserted] = chosen.emplace(dof, proposal);
+          if (!inserted && better(proposal, entry->second))
+            entry->second = proposal;
+        }
+
+    tie_masters.clear();
+    tie_masters.set_size(dof_handler.n_dofs());
+    for (const auto &[dof0, proposal] : chosen)
+      for (unsigned int a = 0; a < dim; ++a)
+        {
+          const types::global_dof_index dof = dof0 + a;
+          if (state.constraints.is_constrained(dof))
+            continue;
+          const bool line = proposal[4] < 0.;
+          state.constraints.add_line(dof);
+          for (unsigned int k = 0; k < (line ? 2u : 3u); ++k)
+            {
+              const auto master =
+                static_cast<types::global_dof_index>(proposal[2 + k]) + a;
+              state.constraints.add_entry(dof,
+                                          master,
+                                          line ? (k == 0 ? 2. : -1.) :
+                                                 (k == 2 ? -1. : 1.));
+              tie_masters.add_index(master);
+            }
+        }
+    tie_masters.compress();
+  }
+
+
+
+  template <int dim>
+  bool
+  GridSystem<dim>::better(const std::array<double, 5> &a,
+                          const std::array<double, 5> &b)
+  {
+    // The stronger weakest master; equal ones (to round-off, which differs
+    // with the number of ranks) by the direction code.
+    if (std::abs(a[0] - b[0]) > 1e-9 * std::max(a[0], b[0]))
+      return a[0] > b[0];
+    return a[1] < b[1];
+  }
+
+
+
+  template <int dim>
   template <typename Function>
   void
   GridSystem<dim>::for_each_constrained_vertex(const Function &f,
                                                const bool with_ghosts) const
   {
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      {
-        if (!(cell->is_locally_owned() || (with_ghosts && cell->is_ghost())) ||
-            cell->active_fe_index() != 0)
-          continue;
-        // Grid::node_of knows owned cells only; a ghost cell's nodes are
-        // found through the node numbering (its relevant dofs).
-        const typename DoFHandler<dim>::active_cell_iterator node_cell(
-          &cell->get_triangulation(),
-          cell->level(),
-          cell->index(),
-          &grid.node_numbering());
-        for (const unsigned int v : cell->vertex_indices())
-          {
-            const unsigned int node =
-              cell->is_locally_owned() ?
-                grid.node_of(cell->active_cell_index(), v) :
-                grid.node_of_dof(node_cell->vertex_dof_index(v, 0));
-            // The unilateral walls of a node are numbered across the
-            // conditions, in their order.
-            unsigned int first_wall = 0;
-            for (const NodalCondition<dim> *condition : conditions)
-              if (condition->acts_on(node))
-                {
-                  f(cell, v, node, *condition, first_wall);
-                  first_wall += condition->n_unilateral_walls(node);
-                }
-            if (first_wall > dim)
-              throw RunError("Boundary conditions: a node of the grid lies "
-                             "on more than " + std::to_string(dim) +
-                             " walls that hold the material only while it "
-                             "presses, which the implicit schemes cannot "
-                             "hold.");
-          }
-      }
+    for_each_unknown_vertex(
+      [&](const auto &cell, const unsigned int v, const unsigned int node) {
+        // The unilateral walls of a node are numbered across the
+        // conditions, in their order.
+        unsigned int first_wall = 0;
+        for (const NodalCondition<dim> *condition : conditions)
+          if (condition->acts_on(node))
+            {
+              f(cell, v, node, *condition, first_wall);
+              first_wall += condition->n_unilateral_walls(node);
+            }
+        if (first_wall > dim)
+          throw RunError("Boundary conditions: a node of the grid lies "
+                         "on more than " + std::to_string(dim) +
+                         " walls that hold the material only while it "
+                         "presses, which the implicit schemes cannot "
+                         "hold.");
+      },
+      with_ghosts);
   }
 
 
@@ -337,8 +668,6 @@ namespace mpm
     // Summed over the ranks that share a node, so that all decide alike.
     TrilinosWrappers::MPI::Vector flags;
     flags.reinit(state.owned_dofs, state.relevant_dofs, comm, true);
-    std::vector<types::global_dof_index> dofs(
-      fe_collection[0].n_dofs_per_cell());
     Support<dim> support;
     for (const auto &cell : dof_handler.active_cell_iterators())
       {
@@ -363,7 +692,6 @@ namespace mpm
           }
         if (contact_vertices.empty())
           continue;
-        cell->get_dof_indices(dofs);
         for (const auto &particle :
              this->points.handler().particles_in_cell(cell))
           {
@@ -379,7 +707,8 @@ namespace mpm
                 for (unsigned int i = 0; i < support.n_nodes; ++i)
                   for (unsigned int a = 0; a < dim; ++a)
                     x[a] += support.N[i] *
-                            state.displacement_ghosted(dofs[i * dim + a]);
+                            state.displacement_ghosted(
+                              node_dof[support.nodes[i]] + a);
               }
             for (const auto &[v, wall, outward] : contact_vertices)
               {

@@ -195,9 +195,9 @@ namespace mpm
     // A node that no point reaches has an empty row: a unit diagonal
     // keeps the matrix regular (its dofs are held at zero).
     if (with_tangent)
-      for (const unsigned int node : state.unreached_nodes)
+      for (const types::global_dof_index dof0 : state.unreached_node_dofs)
         for (unsigned int a = 0; a < dim; ++a)
-          state.tangent.add(node * dim + a, node * dim + a, 1.);
+          state.tangent.add(dof0 + a, dof0 + a, 1.);
     // Compress before a throw: entries buffered for other ranks would
     // otherwise survive `= 0.` and join the next assembly (a line search
     // goes on after a failed trial).

@@ -93,6 +93,14 @@ namespace mpm
       return shape_functions;
     }
 
+    /** The lattice of a smooth kind (reaches_neighbours()). */
+    const NodeLattice<dim> &
+    node_lattice() const
+    {
+      Assert(lattice, ExcInternalError());
+      return *lattice;
+    }
+
     /** Whether a point's support reaches beyond its cell. */
     bool
     reaches_neighbours() const

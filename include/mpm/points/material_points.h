@@ -3,6 +3,7 @@
 
 #include <deal.II/distributed/tria.h>
 #include <deal.II/fe/mapping.h>
+#include <deal.II/grid/grid_tools_cache.h>
 #include <deal.II/particles/particle_handler.h>
 
 #include <boost/serialization/split_member.hpp>
@@ -71,9 +72,11 @@ namespace mpm
     /**
      * Put every point into the cell (and onto the rank) that contains its
      * current position. A point that leaves the grid through an outflow
-     * boundary is removed; one that leaves it elsewhere, or moves beyond
-     * the cells next to its old one, stops the run with a RunError naming
-     * its position.
+     * boundary is removed; one that leaves it elsewhere stops the run with
+     * a RunError naming its position. In implicit runs, whose steps may
+     * carry a point beyond the cells next to its old one (and so beyond
+     * the ghost cells, where deal.II's sort cannot follow it), such points
+     * are sent to the rank that owns their new position.
      */
     void
     sort();
@@ -169,6 +172,15 @@ namespace mpm
     }
 
   private:
+    /**
+     * Take the points that moved more than the smallest cell edge along
+     * some axis since the last sort out of the handler and insert them on
+     * the ranks that own their positions (collective). One in no rank's
+     * cells goes through the particle_lost handler.
+     */
+    void
+    carry_far_points();
+
     /** Whether x lies beyond an outflow face of `cell`. */
     bool
     leaves_through_outflow(
@@ -179,6 +191,8 @@ namespace mpm
     const parallel::distributed::Triangulation<dim> &triangulation;
     const Mapping<dim> &                             mapping;
     Particles::ParticleHandler<dim>                  particle_handler;
+    /** Finds the cell of a point that moved far (implicit runs). */
+    GridTools::Cache<dim> cell_cache;
     const std::vector<std::string>  internal_names;
     const bool                      implicit_fields;
 

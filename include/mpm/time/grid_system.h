@@ -5,6 +5,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/hp/fe_collection.h>
+#include <deal.II/lac/la_parallel_vector.h>
 
 #include <mpm/basis/grid_basis.h>
 #include <mpm/boundary/contact_active_set.h>
@@ -19,9 +20,12 @@ namespace mpm
 
   /**
    * The unknowns of implicit MPM on the background grid: FE_Q(1)^dim on
-   * the cells that hold points and FE_Nothing elsewhere (hp), so the
-   * matrix stays regular and its size follows the material; one point
-   * group per cell, its supports from GridBasis; the grid conditions as
+   * the cells that hold points (with shape functions that reach the cells
+   * around, on every cell with a node that a point reaches, the others of
+   * their nodes held at zero) and FE_Nothing elsewhere (hp), so the matrix
+   * stays regular and its size follows the material; one point group per
+   * cell, its supports from GridBasis spread over the nodes its points
+   * reach; the grid conditions as
    * constraints, with the active set of the walls that hold the material
    * only while it presses, and the Coulomb force of those with friction
    * where the material slides on them.
@@ -94,6 +98,40 @@ namespace mpm
     }
 
   private:
+    /**
+     * Flag (in `reached`, ghosted) every node that some point's support
+     * reaches.
+     */
+    void
+    find_reached_nodes();
+
+    /**
+     * Tie each weak node (whose points weigh less than Weak node fraction
+     * of a cell) by linear extrapolation to three strong nodes of a cell
+     * around it, as constraints; the masters go into `tie_masters`.
+     */
+    void
+    tie_weak_nodes(ImplicitState<dim> &state) const;
+
+    /**
+     * Of two proposed ties (worth, direction code, masters' dofs), whether
+     * the first is to be taken.
+     */
+    static bool
+    better(const std::array<double, 5> &a, const std::array<double, 5> &b);
+
+    /** The first dof of each node of a cell with unknowns, in `node_dof`. */
+    void
+    number_node_dofs();
+
+    /**
+     * Call f(cell, vertex, node) for each vertex of each locally owned
+     * (and, if asked, ghost) cell with unknowns.
+     */
+    template <typename Function>
+    void
+    for_each_unknown_vertex(const Function &f, const bool with_ghosts) const;
+
     /** One group per cell that holds points. */
     void
     build_cell_groups(ImplicitState<dim> &state) const;
@@ -180,6 +218,15 @@ namespace mpm
 
     hp::FECollection<dim> fe_collection;
     DoFHandler<dim>       dof_handler;
+    /** Per node id: 1 where a point's support reaches it (ghosted). */
+    LinearAlgebra::distributed::Vector<double> reached;
+    /** Per node id: sum over points of N V, in the plane (ghosted). */
+    LinearAlgebra::distributed::Vector<double> support_volume;
+    double                                     weak_fraction;
+    /** The dofs that tied nodes hang on, in this step. */
+    mutable IndexSet tie_masters;
+    /** Per node id: the first of its dim dofs in this step. */
+    std::vector<types::global_dof_index> node_dof;
 
     /**
      * The contact nodes (Grid node ids, stable while the grid does not

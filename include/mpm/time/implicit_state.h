@@ -160,8 +160,12 @@ namespace mpm
      * dof (a node may slide on two walls); empty without friction walls.
      */
     std::multimap<types::global_dof_index, SlidingNode> sliding_nodes;
-    /** GMM: nodes in no point's support, held at zero. */
-    std::vector<unsigned int> unreached_nodes;
+    /**
+     * The first dof of each locally owned node in no point's support (GMM;
+     * MPM with shape functions that reach the cells around): held at zero,
+     * with a unit diagonal that keeps the tangent regular.
+     */
+    std::vector<types::global_dof_index> unreached_node_dofs;
 
     IndexSet                       owned_dofs;
     IndexSet                       relevant_dofs;
