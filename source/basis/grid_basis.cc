@@ -264,6 +264,7 @@ namespace mpm
       n *= n_reached[d];
     support.resize(n);
     const Tensor<1, dim> &inverse_h = lattice->inverse_h();
+    unsigned int          kept      = 0;
     for (unsigned int j = 0; j < n; ++j)
       {
         unsigned int patch_index = 0, stride = 1, rest = j;
@@ -287,12 +288,18 @@ namespace mpm
                 component *= weights[d].value[k[d]];
             gradient[g] = component;
           }
-        support.nodes[j] = cell.nodes[patch_index];
-        Assert(support.nodes[j] != NodeLattice<dim>::no_node,
+        // A node whose value and slope vanish in different directions
+        // carries nothing.
+        if (value == 0. && gradient.norm_square() == 0.)
+          continue;
+        support.nodes[kept] = cell.nodes[patch_index];
+        Assert(support.nodes[kept] != NodeLattice<dim>::no_node,
                ExcInternalError());
-        support.N[j]      = value;
-        support.grad_N[j] = gradient;
+        support.N[kept]      = value;
+        support.grad_N[kept] = gradient;
+        ++kept;
       }
+    support.n_nodes = kept;
   }
 
 

@@ -36,7 +36,7 @@ namespace mpm
       "only: the meshfree methods always weigh point volumes, as Iaconeta "
       "et al. do.");
     prm.declare_entry(
-      "Weak node fraction", "0.1", Patterns::Double(0., 1.),
+      "Weak node fraction", "0.02", Patterns::Double(0., 1.),
       "Smooth grid shape functions (Grid/Shape functions other than "
       "linear) reach nodes outside the material that carry only a sliver "
       "of it; Newton then moves them far and diverges. A node whose points "
