@@ -115,6 +115,9 @@ main(int argc, char **argv)
                  "Grid/Arguments=0 : 1 : false",
                  "Grid/Global refinements=2",
                  "Boundary conditions/Fixed boundaries="}));
+  run_case("cell-averaged dilatation rate in plane stress",
+           with({"Grid/Geometry=plane stress",
+                 "Time stepping/Dilatation rate=cell average"}));
   run_case("smooth shape functions with a meshfree method",
            with({"Time stepping/Scheme=quasi-static",
                  "Method=GMM-LME",

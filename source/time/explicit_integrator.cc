@@ -28,12 +28,14 @@ namespace mpm
     const std::vector<std::unique_ptr<Material>> &materials,
     const Scheme                                  scheme,
     const double                                  pic_fraction,
+    const bool                                    average_dilatation,
     const Grid<dim> &                             grid,
     TimerOutput &                                 timer)
     : transfer(transfer)
     , materials(materials)
     , scheme(scheme)
     , pic_fraction(pic_fraction)
+    , average_dilatation(average_dilatation)
     , grid(grid)
     , timer(timer)
   {}
@@ -108,6 +110,8 @@ namespace mpm
                                          const PointUpdate &update,
                                          StepReport &       report)
   {
+    if (update.update_stress && average_dilatation)
+      average_dilatation_rates();
     transfer.for_each_point(
       [&](Particle &particle, const Support<dim> &support) {
         if (update.advance_velocity)
@@ -148,15 +152,21 @@ namespace mpm
                                          StepReport &        report)
   {
     const ArrayView<double> p = particle->get_properties();
-    // In 3x3 form: in an axisymmetric scene L_tt = v_r / r, the hoop rate
-    // ([W]'s d_tt); in plane strain L_zz = 0, and in plane stress the
-    // point's law chooses it (PlaneStress) when the step is committed.
-    const Tensor<2, 3> L = Layout::embed(
-      transfer.velocity_gradient(support),
-      grid.is_axisymmetric() ?
-        transfer.interpolate(support, NodalLayout::velocity)[0] /
-          particle->get_location()[0] :
-        0.);
+    Tensor<2, 3>            L = velocity_gradient(particle, support);
+    if (average_dilatation)
+      {
+        // The cell's mean dilatation rate in place of the point's own,
+        // spread over the directions that can stretch (in plane strain
+        // not zz).
+        const unsigned int n = grid.is_axisymmetric() ? 3 : dim;
+        const double       shift =
+          (cell_dilatation_rate[particle->get_surrounding_cell()
+                                  ->active_cell_index()] -
+           trace(L)) /
+          n;
+        for (unsigned int d = 0; d < n; ++d)
+          L[d][d] += shift;
+      }
     const Tensor<2, 3> F_old = Layout::get_deformation_gradient_3d(p);
     const Tensor<2, 3> F_new = (unit_symmetric_tensor<3>() + dt * L) * F_old;
     const double       J_new = determinant(F_new);
@@ -194,6 +204,58 @@ namespace mpm
                               &p[Layout::internal_variables],
                               material.n_internal_variables()),
                             cell_size));
+  }
+
+
+
+  template <int dim>
+  Tensor<2, 3>
+  ExplicitIntegrator<dim>::velocity_gradient(const Particle &    particle,
+                                             const Support<dim> &support) const
+  {
+    // In 3x3 form: in an axisymmetric scene L_tt = v_r / r, the hoop rate
+    // ([W]'s d_tt); in plane strain L_zz = 0, and in plane stress the
+    // point's law chooses it (PlaneStress) when the step is committed.
+    return Layout::embed(
+      transfer.velocity_gradient(support),
+      grid.is_axisymmetric() ?
+        transfer.interpolate(support, NodalLayout::velocity)[0] /
+          particle->get_location()[0] :
+        0.);
+  }
+
+
+
+  template <int dim>
+  void
+  ExplicitIntegrator<dim>::average_dilatation_rates()
+  {
+    // Only the cells that hold points are touched, so an empty grid costs
+    // nothing.
+    const unsigned int n_cells = grid.get_triangulation().n_active_cells();
+    if (cell_volume.size() != n_cells)
+      {
+        cell_dilatation_rate.assign(n_cells, 0.);
+        cell_volume.assign(n_cells, 0.);
+        occupied_cells.clear();
+      }
+    for (const unsigned int cell : occupied_cells)
+      cell_dilatation_rate[cell] = cell_volume[cell] = 0.;
+    occupied_cells.clear();
+    transfer.for_each_point(
+      [&](Particle &particle, const Support<dim> &support) {
+        const unsigned int cell =
+          particle->get_surrounding_cell()->active_cell_index();
+        const double volume =
+          Layout::current_volume(particle->get_properties());
+        if (cell_volume[cell] == 0.)
+          occupied_cells.push_back(cell);
+        cell_dilatation_rate[cell] +=
+          volume * trace(velocity_gradient(particle, support));
+        cell_volume[cell] += volume;
+      });
+    for (const unsigned int cell : occupied_cells)
+      cell_dilatation_rate[cell] /= cell_volume[cell];
   }
 
 

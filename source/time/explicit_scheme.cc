@@ -32,6 +32,17 @@ namespace mpm
                       "percent damps them within tens of steps at the cost "
                       "of a little dissipation; 1 is pure PIC, strongly "
                       "dissipative.");
+    prm.declare_entry(
+      "Dilatation rate", "point",
+      Patterns::Selection("point|cell average"),
+      "Explicit: the volumetric part of each point's velocity gradient. "
+      "point: its own. cell average: the mean over the points of its cell, "
+      "weighted by their volumes (a B-bar in rate form, after Mast et al. "
+      "2012 and Coombs et al. 2018): bilinear cells with 2 x 2 points "
+      "cannot follow isochoric plastic flow (von Mises, Tresca, Mohr-"
+      "Coulomb without dilatancy) point by point and lock, which raises "
+      "forming pressures and bearing capacities; the average lets them "
+      "flow. Plane strain, axisymmetric (the hoop rate included) and 3D.");
     prm.leave_subsection();
   }
 
@@ -48,9 +59,18 @@ namespace mpm
                  ExplicitIntegrator<dim>::parse_scheme(
                    TimeScheme<dim>::time_stepping_entry(prm, "Update scheme")),
                  TimeScheme<dim>::time_stepping_number(prm, "PIC fraction"),
+                 TimeScheme<dim>::time_stepping_entry(prm, "Dilatation rate") ==
+                   "cell average",
                  scene.grid,
                  scene.timer)
-  {}
+  {
+    if (scene.grid.is_plane_stress() &&
+        TimeScheme<dim>::time_stepping_entry(prm, "Dilatation rate") !=
+          "point")
+      throw InputError("Time stepping/Dilatation rate = cell average is for "
+                       "plane strain, axisymmetric and 3D scenes: a plate in "
+                       "plane stress thins instead of locking.");
+  }
 
 
 

@@ -80,6 +80,7 @@ namespace mpm
                        const std::vector<std::unique_ptr<Material>> &materials,
                        const Scheme                                  scheme,
                        const double                                  pic_fraction,
+                       const bool average_dilatation,
                        const Grid<dim> &                             grid,
                        TimerOutput &                                 timer);
 
@@ -115,6 +116,22 @@ namespace mpm
                   const double        dt,
                   StepReport &        report);
 
+    /**
+     * The 3x3 velocity gradient of a point: in an axisymmetric scene with
+     * the hoop rate v_r / r, in plane strain with L_zz = 0 (in plane
+     * stress the law chooses L_zz when the step is committed).
+     */
+    Tensor<2, 3>
+    velocity_gradient(const Particle &particle, const Support<dim> &support)
+      const;
+
+    /**
+     * Per cell that holds points, the volume-weighted mean of their
+     * dilatation rates tr L, for the cell-average option.
+     */
+    void
+    average_dilatation_rates();
+
     void
     move(Particle &          particle,
          const Support<dim> &support,
@@ -125,6 +142,11 @@ namespace mpm
     const std::vector<std::unique_ptr<Material>> &materials;
     const Scheme                                  scheme;
     const double                                  pic_fraction;
+    const bool                                    average_dilatation;
+    /** By active cell index: sum of V tr L, then their mean; and sum of V. */
+    std::vector<double> cell_dilatation_rate, cell_volume;
+    /** The cells that hold points, whose entries above are set. */
+    std::vector<unsigned int> occupied_cells;
     const Grid<dim> &                             grid;
     /** The grid's smallest cell edge in this step. */
     double                                        cell_size = 0.;
