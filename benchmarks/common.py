@@ -33,6 +33,22 @@ def ensure_matplotlib():
     return plt
 
 
+def scene_options():
+    """The options --shape-functions=NAME and --dilatation-rate=NAME of a
+    benchmark's command line: the settings they stand for, and a suffix
+    for the names of its output, empty without them."""
+    entries = {"--shape-functions=": "Grid/Shape functions",
+               "--dilatation-rate=": "Time stepping/Dilatation rate"}
+    settings, suffix = {}, ""
+    for argument in sys.argv[1:]:
+        for option, entry in entries.items():
+            if argument.startswith(option):
+                value = argument[len(option):]
+                settings[entry] = value
+                suffix += "_" + value.replace(" ", "_")
+    return settings, suffix
+
+
 def mpm_executable():
     build = os.environ.get("MPM_BUILD", os.path.join(ROOT, "build"))
     exe = os.path.join(build, "mpm")
