@@ -64,8 +64,8 @@ test()
   TimerOutput       timer(MPI_COMM_WORLD, deallog.get_console(),
                     TimerOutput::never, TimerOutput::wall_times);
   ExplicitIntegrator<dim> integrator(
-    transfer, materials, ExplicitIntegrator<dim>::Scheme::MUSL, 0., grid,
-    timer);
+    transfer, materials, ExplicitIntegrator<dim>::Scheme::MUSL, 0., false,
+    grid, timer);
 
   using Layout = PointLayout<dim>;
   auto centre_height = [&]() {
