@@ -457,12 +457,12 @@ namespace mpm
         worth = std::min(worth, strength(masters[k]));
       if (worth < threshold)
         return;
-      std::array<double, 5> proposal = {
-        worth,
-        static_cast<double>(code),
-        static_cast<double>(node_dof[masters[0]]),
-        static_cast<double>(node_dof[masters[1]]),
-        n_masters == 3 ? static_cast<double>(node_dof[masters[2]]) : -1.};
+      const std::array<double, 5> proposal = {
+        {worth,
+         static_cast<double>(code),
+         static_cast<double>(node_dof[masters[0]]),
+         static_cast<double>(node_dof[masters[1]]),
+         n_masters == 3 ? static_cast<double>(node_dof[masters[2]]) : -1.}};
       auto [entry, inserted] = proposals.emplace(node_dof[node], proposal);
       if (!inserted && better(proposal, entry->second))
         entry->second = proposal;
@@ -503,7 +503,7 @@ namespace mpm
                   one[d1] = s1;
                   two[d1] = 2 * s1;
                   const unsigned int line = 2 * d1 + (s1 > 0);
-                  propose(node, {at(one), at(two), 0}, 2, line);
+                  propose(node, {{at(one), at(two), 0}}, 2, line);
                   for (unsigned int d2 = d1 + 1; d2 < dim; ++d2)
                     for (const int s2 : {-1, 1})
                       {
@@ -511,7 +511,7 @@ namespace mpm
                         other[d2] = s2;
                         both[d2]  = s2;
                         propose(node,
-                                {at(one), at(other), at(both)},
+                                {{at(one), at(other), at(both)}},
                                 3,
                                 2 * dim + 4 * (dim * d1 + d2) + 2 * line +
                                   (s2 > 0));
