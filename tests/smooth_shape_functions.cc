@@ -29,7 +29,13 @@
 //   points were lost before they were carried to their new rank);
 // - Newmark: the rolling disk of prm/rolling_disk.prm to 0.2 s with
 //   B-splines rolls (75 % to 105 % of the exact a t^2 / 2, as Q1 in
-//   tests/implicit).
+//   tests/implicit);
+// - quasi-static: prm/rough_base.prm (a block pressed by p = 100 kPa onto
+//   a base with Coulomb friction) with B-splines and uGIMP: the base
+//   carries p B (vertical equilibrium, 1e-8). On two ranks the partition
+//   crosses the base: the supports of one rank's points reach wall nodes
+//   of its ghost cells, which must carry the wall's conditions too (before
+//   they did, Newton failed there).
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/point.h>
@@ -252,6 +258,22 @@ rolling_disk(const std::string &kind)
                      ratio < 1.05 && drift < 0.01);
 }
 
+void
+rough_base(const std::string &kind)
+{
+  auto csv = mpm_tests::run_scene("../prm/rough_base.prm",
+                                  "output-rough-base-" +
+                                    std::string(kind == "uGIMP" ? "gimp" :
+                                                                  "spline"),
+                                  {"Grid/Shape functions=" + kind});
+  const double p = 1e5, B = 1.;
+  mpm_tests::check(kind + ", rough base, quasi-static: the base carries p B "
+                          "(1e-8)",
+                   csv["time"].back() > 1. - 1e-12 &&
+                     std::abs(csv["bottom_normal_force"].back() / (p * B) -
+                              1.) < 1e-8);
+}
+
 int
 main(int argc, char **argv)
 {
@@ -279,4 +301,6 @@ main(int argc, char **argv)
   large_deflection_cantilever("quadratic B-spline", 0.02, false);
   large_deflection_cantilever("quadratic B-spline", 0., false);
   rolling_disk("quadratic B-spline");
+  for (const std::string kind : {"quadratic B-spline", "uGIMP"})
+    rough_base(kind);
 }

@@ -115,14 +115,16 @@ namespace mpm
         const TrilinosWrappers::MPI::Vector touching =
           contact_gaps(state, false);
         const bool first_step = !contact.has_started();
-        for_each_contact_node([&](const ContactPair &pair) {
-          if (touching(pair.dof0 + pair.wall) == 0.)
-            contact.let_go(pair.node, pair.wall);
-          else if (first_step)
-            contact.hold_from_start(pair.node,
-                                    pair.wall,
-                                    pair.friction == 0.);
-        });
+        for_each_contact_node(
+          [&](const ContactPair &pair) {
+            if (touching(pair.dof0 + pair.wall) == 0.)
+              contact.let_go(pair.node, pair.wall);
+            else if (first_step)
+              contact.hold_from_start(pair.node,
+                                      pair.wall,
+                                      pair.friction == 0.);
+          },
+          with_ghost_nodes());
       }
     make_constraints(state);
 
@@ -137,12 +139,20 @@ namespace mpm
     // keep their entries, so that releasing a contact node needs no new
     // pattern.
     for (const auto &group : state.groups)
-      state.constraints.add_entries_local_to_global(group.dofs, dsp, true);
+      {
+        state.constraints.add_entries_local_to_global(group.dofs, dsp, true);
+        // A component that a contact wall holds now is tied once the wall
+        // lets go, with no new pattern.
+        if (tie_constraints.n_constraints() > 0)
+          tie_constraints.add_entries_local_to_global(group.dofs, dsp, true);
+      }
     for (const types::global_dof_index dof0 : state.unreached_node_dofs)
       for (unsigned int a = 0; a < dim; ++a)
         dsp.add(dof0 + a, dof0 + a);
-    SparsityTools::distribute_sparsity_pattern(dsp, state.owned_dofs, comm,
-                                               state.relevant_dofs);
+    SparsityTools::distribute_sparsity_pattern(dsp,
+                                               state.owned_dofs,
+                                               comm,
+                                               rows);
     state.reinit(dsp, comm);
   }
 
@@ -385,7 +395,8 @@ namespace mpm
       if (!condition.add_constraints(
             node, dofs, holds.data(), state.constraints))
         unsupported_corner = true;
-    });
+    },
+    with_ghost_nodes());
     // Decided on all ranks together, so that all stop.
     if (weak_fraction > 0. && basis.reaches_neighbours())
       tie_weak_nodes(state);
@@ -439,10 +450,16 @@ namespace mpm
     const double            threshold =
       weak_fraction * grid.get_triangulation().begin_active()->measure();
     const auto strength = [&](const unsigned int node) {
-      return node == NodeLattice<dim>::no_node ||
-                 reached.local_element(node) == 0. ?
-               -1. :
-               support_volume.local_element(node);
+      if (node == NodeLattice<dim>::no_node ||
+          reached.local_element(node) == 0.)
+        return -1.;
+      // A master on a wall would chain the tie to the wall's constraint,
+      // which a rank that uses the tie but does not see the master could
+      // not resolve.
+      for (const NodalCondition<dim> *condition : conditions)
+        if (condition->acts_on(node))
+          return -1.;
+      return support_volume.local_element(node);
     };
     // Per proposal, by the node's first dof: worth, the stencil's
     // direction code and its masters' first dofs (the third -1 for a
@@ -544,27 +561,35 @@ namespace mpm
             entry->second = proposal;
         }
 
+    // Every component's tie goes into tie_constraints (the sparsity pattern
+    // holds them all, also where a contact wall holds the node now); the
+    // state's constraints take those that no wall holds.
     tie_masters.clear();
     tie_masters.set_size(dof_handler.n_dofs());
+    tie_constraints.clear();
+    tie_constraints.reinit(state.relevant_dofs);
     for (const auto &[dof0, proposal] : chosen)
       for (unsigned int a = 0; a < dim; ++a)
         {
-          const types::global_dof_index dof = dof0 + a;
-          if (state.constraints.is_constrained(dof))
-            continue;
-          const bool line = proposal[4] < 0.;
-          state.constraints.add_line(dof);
+          const types::global_dof_index dof  = dof0 + a;
+          const bool                    line = proposal[4] < 0.;
+          const bool held = state.constraints.is_constrained(dof);
+          tie_constraints.add_line(dof);
+          if (!held)
+            state.constraints.add_line(dof);
           for (unsigned int k = 0; k < (line ? 2u : 3u); ++k)
             {
               const auto master =
                 static_cast<types::global_dof_index>(proposal[2 + k]) + a;
-              state.constraints.add_entry(dof,
-                                          master,
-                                          line ? (k == 0 ? 2. : -1.) :
-                                                 (k == 2 ? -1. : 1.));
+              const double weight =
+                line ? (k == 0 ? 2. : -1.) : (k == 2 ? -1. : 1.);
+              tie_constraints.add_entry(dof, master, weight);
+              if (!held)
+                state.constraints.add_entry(dof, master, weight);
               tie_masters.add_index(master);
             }
         }
+    tie_constraints.close();
     tie_masters.compress();
   }
 
@@ -819,7 +844,8 @@ namespace mpm
               changes[4] += counted;
             }
         }
-    });
+    },
+    with_ghost_nodes());
     Utilities::MPI::sum(changes, comm, changes);
     if (changes[0] + changes[1] + changes[2] + changes[3] + changes[4] == 0)
       return false;

@@ -225,6 +225,18 @@ namespace mpm
     double                                     weak_fraction;
     /** The dofs that tied nodes hang on, in this step. */
     mutable IndexSet tie_masters;
+    /** The ties of this step on every component, walls or not. */
+    mutable AffineConstraints<double> tie_constraints;
+
+    /**
+     * Whether the conditions must reach the nodes of ghost cells: shape
+     * functions that reach beyond a point's cell assemble into them.
+     */
+    bool
+    with_ghost_nodes() const
+    {
+      return basis.reaches_neighbours();
+    }
     /** Per node id: the first of its dim dofs in this step. */
     std::vector<types::global_dof_index> node_dof;
 
