@@ -35,17 +35,8 @@ namespace mpm
       "cells); cells on the material's surface keep point volumes. MPM "
       "only: the meshfree methods always weigh point volumes, as Iaconeta "
       "et al. do.");
-    prm.declare_entry(
-      "Weak node fraction", "0.02", Patterns::Double(0., 1.),
-      "Smooth grid shape functions (Grid/Shape functions other than "
-      "linear) reach nodes outside the material that carry only a sliver "
-      "of it; Newton then moves them far and diverges. A node whose points "
-      "weigh less than this fraction of a cell's volume (sum over points "
-      "of N V) is tied to three strong nodes of a cell around it by linear "
-      "extrapolation, u_k = u_a + u_b - u_c across a face of the cell, "
-      "which keeps affine motions exact (extended B-splines, after "
-      "Yamaguchi, Moutsanidis and Bazilevs 2021). 0: no ties.");
     prm.leave_subsection();
+    ReachedNodes<dim>::declare_parameters(prm);
   }
 
 
@@ -64,10 +55,10 @@ namespace mpm
     , conditions(conditions)
     , pcout(pcout)
     , dof_handler(points.get_triangulation())
+    , reached_nodes(prm, grid, basis, conditions)
   {
     prm.enter_subsection("Newton");
     scale_full_cells = prm.get("Integration") == "full cells by cell volume";
-    weak_fraction    = prm.get_double("Weak node fraction");
     prm.leave_subsection();
     fe_collection.push_back(FESystem<dim>(FE_Q<dim>(1), dim));
     fe_collection.push_back(FESystem<dim>(FE_Nothing<dim>(), dim));
@@ -86,24 +77,25 @@ namespace mpm
     // that hold points (Q1), or, for shape functions that reach the cells
     // around, of every cell with a node a point reaches (the nodes of
     // those cells that no point reaches are held at zero).
+    collect_cell_groups(state);
     if (basis.reaches_neighbours())
-      find_reached_nodes();
+      reached_nodes.find(state.groups, group_cells);
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
           bool carries = this->points.handler().n_particles_in_cell(cell) > 0;
           if (basis.reaches_neighbours())
             for (const unsigned int v : cell->vertex_indices())
-              carries = carries ||
-                        reached.local_element(grid.node_of(
-                          cell->active_cell_index(), v)) > 0.;
+              carries =
+                carries || reached_nodes.contains(
+                             grid.node_of(cell->active_cell_index(), v));
           cell->set_active_fe_index(carries ? 0 : 1);
         }
     dof_handler.distribute_dofs(fe_collection);
     state.owned_dofs = dof_handler.locally_owned_dofs();
     DoFTools::extract_locally_relevant_dofs(dof_handler, state.relevant_dofs);
     number_node_dofs();
-    build_cell_groups(state);
+    number_cell_groups(state);
 
     // Contact nodes stay engaged into the new step only while material
     // still touches them. The first step holds every node that material
@@ -131,7 +123,8 @@ namespace mpm
     const MPI_Comm comm = this->points.get_communicator();
     // Rows for the masters of tied nodes too, which may lie beyond this
     // rank's ghost cells.
-    IndexSet rows = state.relevant_dofs;
+    IndexSet        rows = state.relevant_dofs;
+    const IndexSet &tie_masters = reached_nodes.tie_masters();
     if (tie_masters.size() == rows.size())
       rows.add_indices(tie_masters);
     DynamicSparsityPattern dsp(rows);
@@ -143,8 +136,10 @@ namespace mpm
         state.constraints.add_entries_local_to_global(group.dofs, dsp, true);
         // A component that a contact wall holds now is tied once the wall
         // lets go, with no new pattern.
-        if (tie_constraints.n_constraints() > 0)
-          tie_constraints.add_entries_local_to_global(group.dofs, dsp, true);
+        const AffineConstraints<double> &ties =
+          reached_nodes.tie_constraints();
+        if (ties.n_constraints() > 0)
+          ties.add_entries_local_to_global(group.dofs, dsp, true);
       }
     for (const types::global_dof_index dof0 : state.unreached_node_dofs)
       for (unsigned int a = 0; a < dim; ++a)
@@ -154,49 +149,6 @@ namespace mpm
                                                comm,
                                                rows);
     state.reinit(dsp, comm);
-  }
-
-
-
-  template <int dim>
-  void
-  GridSystem<dim>::find_reached_nodes()
-  {
-    for (auto *vector : {&reached, &support_volume})
-      if (vector->get_partitioner() != grid.node_partitioner())
-        vector->reinit(grid.node_partitioner());
-      else
-        {
-          *vector = 0.;
-          vector->zero_out_ghost_values();
-        }
-    Support<dim> support;
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        for (const auto &particle :
-             this->points.handler().particles_in_cell(cell))
-          {
-            const ArrayView<const double> p = particle.get_properties();
-            basis.evaluate(cell->active_cell_index(),
-                           particle.get_reference_location(),
-                           p,
-                           support);
-            // In the plane: a ring's or a plate's volume over its ring or
-            // thickness, to compare with a cell's area.
-            const double volume =
-              PointLayout<dim>::current_volume(p) /
-              grid.out_of_plane_measure(particle.get_location());
-            for (unsigned int i = 0; i < support.n_nodes; ++i)
-              {
-                reached.local_element(support.nodes[i]) = 1.;
-                support_volume.local_element(support.nodes[i]) +=
-                  support.N[i] * volume;
-              }
-          }
-    reached.compress(VectorOperation::max);
-    reached.update_ghost_values();
-    support_volume.compress(VectorOperation::add);
-    support_volume.update_ghost_values();
   }
 
 
@@ -246,23 +198,18 @@ namespace mpm
 
   template <int dim>
   void
-  GridSystem<dim>::build_cell_groups(ImplicitState<dim> &state) const
+  GridSystem<dim>::collect_cell_groups(ImplicitState<dim> &state)
   {
-    // A group's nodes are those its points reach, in the order met (for Q1
-    // the cell's vertices); each point's support is spread over them, with
-    // zeros at the nodes it does not reach.
-    unsigned int              n_groups = 0;
-    std::vector<unsigned int> nodes;
-    Support<dim>              own;
+    unsigned int n_groups = 0;
+    group_cells.clear();
     for (const auto &cell : dof_handler.active_cell_iterators())
       {
         if (!cell->is_locally_owned() ||
             this->points.handler().n_particles_in_cell(cell) == 0)
           continue;
-        auto &group  = state.next_group(n_groups);
-        group.weight = quadrature_scale(cell);
+        group_cells.push_back(cell);
+        auto &group = state.next_group(n_groups);
         group.supports.resize(this->points.handler().n_particles_in_cell(cell));
-        nodes.clear();
         unsigned int q = 0;
         const auto cell_points = this->points.handler().particles_in_cell(cell);
         for (auto particle = cell_points.begin(); particle != cell_points.end();
@@ -273,12 +220,32 @@ namespace mpm
                            particle->get_reference_location(),
                            particle->get_properties(),
                            group.supports[q]);
-            for (unsigned int i = 0; i < group.supports[q].n_nodes; ++i)
-              if (std::find(nodes.begin(),
-                            nodes.end(),
-                            group.supports[q].nodes[i]) == nodes.end())
-                nodes.push_back(group.supports[q].nodes[i]);
           }
+      }
+    state.groups.resize(n_groups);
+  }
+
+
+
+  template <int dim>
+  void
+  GridSystem<dim>::number_cell_groups(ImplicitState<dim> &state) const
+  {
+    // A group's nodes are those its points reach, in the order met (for Q1
+    // the cell's vertices); each point's support is spread over them, with
+    // zeros at the nodes it does not reach.
+    std::vector<unsigned int> nodes;
+    Support<dim>              own;
+    for (unsigned int g = 0; g < state.groups.size(); ++g)
+      {
+        auto &group  = state.groups[g];
+        group.weight = quadrature_scale(group_cells[g]);
+        nodes.clear();
+        for (const Support<dim> &support : group.supports)
+          for (unsigned int i = 0; i < support.n_nodes; ++i)
+            if (std::find(nodes.begin(), nodes.end(), support.nodes[i]) ==
+                nodes.end())
+              nodes.push_back(support.nodes[i]);
         group.dofs.resize(nodes.size() * dim);
         for (unsigned int i = 0; i < nodes.size(); ++i)
           for (unsigned int a = 0; a < dim; ++a)
@@ -306,7 +273,6 @@ namespace mpm
               }
           }
       }
-    state.groups.resize(n_groups);
   }
 
 
@@ -346,7 +312,7 @@ namespace mpm
 
   template <int dim>
   void
-  GridSystem<dim>::make_constraints(ImplicitState<dim> &state) const
+  GridSystem<dim>::make_constraints(ImplicitState<dim> &state)
   {
     // Grid conditions on the nodes of active cells: a wall along an axis
     // fixes that component; a slanted wall ties the components so that the
@@ -398,8 +364,11 @@ namespace mpm
     },
     with_ghost_nodes());
     // Decided on all ranks together, so that all stop.
-    if (weak_fraction > 0. && basis.reaches_neighbours())
-      tie_weak_nodes(state);
+    if (basis.reaches_neighbours())
+      reached_nodes.tie_weak_nodes(node_dof,
+                                   dof_handler.n_dofs(),
+                                   this->points.get_communicator(),
+                                   state);
 
     // Nodes of cells with unknowns that no point reaches carry nothing:
     // held at zero.
@@ -410,7 +379,7 @@ namespace mpm
         std::vector<bool> met(grid.n_nodes(), false);
         for_each_unknown_vertex(
           [&](const auto &, const unsigned int, const unsigned int node) {
-            if (reached.local_element(node) != 0. || met[node])
+            if (reached_nodes.contains(node) || met[node])
               return;
             met[node]                          = true;
             const types::global_dof_index dof0 = node_dof[node];
@@ -429,182 +398,6 @@ namespace mpm
                      "walls are aligned with the axes, and material reached "
                      "such a corner.");
     state.constraints.close();
-  }
-
-
-
-  template <int dim>
-  void
-  GridSystem<dim>::tie_weak_nodes(ImplicitState<dim> &state) const
-  {
-    // A node is weak where its points weigh less than the fraction of a
-    // cell's area (volume in 3D). Each rank proposes ties for the weak
-    // nodes in the lattice patches of its cells that hold points, whose
-    // nodes it sees: along a lattice line, u_k = 2 u_a - u_b, or across a
-    // lattice square, u_k = u_a + u_b - u_c, with strong masters. Every
-    // rank then takes, of all proposals for a node, the one whose weakest
-    // master is the strongest (equal ones, to round-off, by the stencil's
-    // direction, which does not depend on the numbering), so that all
-    // ranks agree, and one and two ranks alike.
-    const NodeLattice<dim> &lattice   = basis.node_lattice();
-    const double            threshold =
-      weak_fraction * grid.get_triangulation().begin_active()->measure();
-    const auto strength = [&](const unsigned int node) {
-      if (node == NodeLattice<dim>::no_node ||
-          reached.local_element(node) == 0.)
-        return -1.;
-      // A master on a wall would chain the tie to the wall's constraint,
-      // which a rank that uses the tie but does not see the master could
-      // not resolve.
-      for (const NodalCondition<dim> *condition : conditions)
-        if (condition->acts_on(node))
-          return -1.;
-      return support_volume.local_element(node);
-    };
-    // Per proposal, by the node's first dof: worth, the stencil's
-    // direction code and its masters' first dofs (the third -1 for a
-    // line), as doubles for one all_gather.
-    std::map<types::global_dof_index, std::array<double, 5>> proposals;
-    const auto propose = [&](const unsigned int                 node,
-                             const std::array<unsigned int, 3> &masters,
-                             const unsigned int                 n_masters,
-                             const unsigned int                 code) {
-      double worth = std::numeric_limits<double>::max();
-      for (unsigned int k = 0; k < n_masters; ++k)
-        worth = std::min(worth, strength(masters[k]));
-      if (worth < threshold)
-        return;
-      const std::array<double, 5> proposal = {
-        {worth,
-         static_cast<double>(code),
-         static_cast<double>(node_dof[masters[0]]),
-         static_cast<double>(node_dof[masters[1]]),
-         n_masters == 3 ? static_cast<double>(node_dof[masters[2]]) : -1.}};
-      auto [entry, inserted] = proposals.emplace(node_dof[node], proposal);
-      if (!inserted && better(proposal, entry->second))
-        entry->second = proposal;
-    };
-    constexpr unsigned int width = NodeLattice<dim>::patch_width;
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      {
-        if (!cell->is_locally_owned() ||
-            this->points.handler().n_particles_in_cell(cell) == 0)
-          continue;
-        const auto &patch = lattice.cell(cell->active_cell_index()).nodes;
-        for (unsigned int j = 0; j < NodeLattice<dim>::n_patch_nodes; ++j)
-          {
-            const unsigned int node = patch[j];
-            if (node == NodeLattice<dim>::no_node ||
-                reached.local_element(node) == 0. ||
-                !(support_volume.local_element(node) < threshold))
-              continue;
-            std::array<int, dim> index;
-            for (unsigned int d = 0, rest = j; d < dim; ++d, rest /= width)
-              index[d] = rest % width;
-            // The patch node at index + the offsets, or none.
-            const auto at = [&](const std::array<int, dim> &offset) {
-              unsigned int k = 0, stride = 1;
-              for (unsigned int d = 0; d < dim; ++d, stride *= width)
-                {
-                  const int i = index[d] + offset[d];
-                  if (i < 0 || i >= static_cast<int>(width))
-                    return NodeLattice<dim>::no_node;
-                  k += i * stride;
-                }
-              return patch[k];
-            };
-            for (unsigned int d1 = 0; d1 < dim; ++d1)
-              for (const int s1 : {-1, 1})
-                {
-                  std::array<int, dim> one{}, two{};
-                  one[d1] = s1;
-                  two[d1] = 2 * s1;
-                  const unsigned int line = 2 * d1 + (s1 > 0);
-                  propose(node, {{at(one), at(two), 0}}, 2, line);
-                  for (unsigned int d2 = d1 + 1; d2 < dim; ++d2)
-                    for (const int s2 : {-1, 1})
-                      {
-                        std::array<int, dim> other{}, both = one;
-                        other[d2] = s2;
-                        both[d2]  = s2;
-                        propose(node,
-                                {{at(one), at(other), at(both)}},
-                                3,
-                                2 * dim + 4 * (dim * d1 + d2) + 2 * line +
-                                  (s2 > 0));
-                      }
-                }
-          }
-      }
-
-    std::vector<double> own;
-    for (const auto &[dof, proposal] : proposals)
-      {
-        own.push_back(static_cast<double>(dof));
-        own.insert(own.end(), proposal.begin(), proposal.end());
-      }
-    std::map<types::global_dof_index, std::array<double, 5>> chosen;
-    for (const auto &rank_proposals :
-         Utilities::MPI::all_gather(this->points.get_communicator(), own))
-      for (unsigned int t = 0; t < rank_proposals.size(); t += 6)
-        {
-          const auto dof = static_cast<types::global_dof_index>(
-            rank_proposals[t]);
-          if (!state.relevant_dofs.is_element(dof))
-            continue;
-          std::array<double, 5> proposal;
-          std::copy(&rank_proposals[t + 1],
-                    &rank_proposals[t + 6],
-                    proposal.begin());
-          auto [entry, inserted] = chosen.emplace(dof, proposal);
-          if (!inserted && better(proposal, entry->second))
-            entry->second = proposal;
-        }
-
-    // Every component's tie goes into tie_constraints (the sparsity pattern
-    // holds them all, also where a contact wall holds the node now); the
-    // state's constraints take those that no wall holds.
-    tie_masters.clear();
-    tie_masters.set_size(dof_handler.n_dofs());
-    tie_constraints.clear();
-    tie_constraints.reinit(state.relevant_dofs);
-    for (const auto &[dof0, proposal] : chosen)
-      for (unsigned int a = 0; a < dim; ++a)
-        {
-          const types::global_dof_index dof  = dof0 + a;
-          const bool                    line = proposal[4] < 0.;
-          const bool held = state.constraints.is_constrained(dof);
-          tie_constraints.add_line(dof);
-          if (!held)
-            state.constraints.add_line(dof);
-          for (unsigned int k = 0; k < (line ? 2u : 3u); ++k)
-            {
-              const auto master =
-                static_cast<types::global_dof_index>(proposal[2 + k]) + a;
-              const double weight =
-                line ? (k == 0 ? 2. : -1.) : (k == 2 ? -1. : 1.);
-              tie_constraints.add_entry(dof, master, weight);
-              if (!held)
-                state.constraints.add_entry(dof, master, weight);
-              tie_masters.add_index(master);
-            }
-        }
-    tie_constraints.close();
-    tie_masters.compress();
-  }
-
-
-
-  template <int dim>
-  bool
-  GridSystem<dim>::better(const std::array<double, 5> &a,
-                          const std::array<double, 5> &b)
-  {
-    // The stronger weakest master; equal ones (to round-off, which differs
-    // with the number of ranks) by the direction code.
-    if (std::abs(a[0] - b[0]) > 1e-9 * std::max(a[0], b[0]))
-      return a[0] > b[0];
-    return a[1] < b[1];
   }
 
 

@@ -12,6 +12,7 @@
 #include <mpm/boundary/nodal_condition.h>
 #include <mpm/grid/grid.h>
 #include <mpm/time/implicit_system.h>
+#include <mpm/time/reached_nodes.h>
 
 
 namespace mpm
@@ -34,7 +35,10 @@ namespace mpm
   class GridSystem : public ImplicitSystem<dim>
   {
   public:
-    /** `Newton/Integration`, the quadrature of full cells. */
+    /**
+     * `Newton/Integration`, the quadrature of full cells, and the weak
+     * nodes' ties (ReachedNodes).
+     */
     static void
     declare_parameters(ParameterHandler &prm);
 
@@ -98,28 +102,6 @@ namespace mpm
     }
 
   private:
-    /**
-     * Flag (in `reached`, ghosted) every node that some point's support
-     * reaches.
-     */
-    void
-    find_reached_nodes();
-
-    /**
-     * Tie each weak node (whose points weigh less than Weak node fraction
-     * of a cell) by linear extrapolation to three strong nodes of a cell
-     * around it, as constraints; the masters go into `tie_masters`.
-     */
-    void
-    tie_weak_nodes(ImplicitState<dim> &state) const;
-
-    /**
-     * Of two proposed ties (worth, direction code, masters' dofs), whether
-     * the first is to be taken.
-     */
-    static bool
-    better(const std::array<double, 5> &a, const std::array<double, 5> &b);
-
     /** The first dof of each node of a cell with unknowns, in `node_dof`. */
     void
     number_node_dofs();
@@ -132,9 +114,19 @@ namespace mpm
     void
     for_each_unknown_vertex(const Function &f, const bool with_ghosts) const;
 
-    /** One group per cell that holds points. */
+    /**
+     * One group per owned cell that holds points, in `group_cells`, with
+     * its points and their supports (before the unknowns are numbered).
+     */
     void
-    build_cell_groups(ImplicitState<dim> &state) const;
+    collect_cell_groups(ImplicitState<dim> &state);
+
+    /**
+     * Each group's nodes (those its points reach, in the order met), dofs
+     * and quadrature weight; every support spread over the group's nodes.
+     */
+    void
+    number_cell_groups(ImplicitState<dim> &state) const;
 
     /**
      * Factor on the point volumes of a cell in the quadrature of the
@@ -149,7 +141,7 @@ namespace mpm
      * nodes only while engaged.
      */
     void
-    make_constraints(ImplicitState<dim> &state) const;
+    make_constraints(ImplicitState<dim> &state);
 
     /**
      * Call f(cell, vertex, node, condition, first wall) for each vertex of
@@ -218,15 +210,10 @@ namespace mpm
 
     hp::FECollection<dim> fe_collection;
     DoFHandler<dim>       dof_handler;
-    /** Per node id: 1 where a point's support reaches it (ghosted). */
-    LinearAlgebra::distributed::Vector<double> reached;
-    /** Per node id: sum over points of N V, in the plane (ghosted). */
-    LinearAlgebra::distributed::Vector<double> support_volume;
-    double                                     weak_fraction;
-    /** The dofs that tied nodes hang on, in this step. */
-    mutable IndexSet tie_masters;
-    /** The ties of this step on every component, walls or not. */
-    mutable AffineConstraints<double> tie_constraints;
+    /** The nodes that smooth shape functions reach, and their ties. */
+    ReachedNodes<dim> reached_nodes;
+    /** The owned cell of each group. */
+    std::vector<typename DoFHandler<dim>::active_cell_iterator> group_cells;
 
     /**
      * Whether the conditions must reach the nodes of ghost cells: shape
