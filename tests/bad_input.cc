@@ -149,10 +149,6 @@ main(int argc, char **argv)
                  "Bodies/block/Upper corner=3, 3"}));
   run_case("time step above the stability limit",
            with({"Time stepping/Time step=0.1"}));
-  run_case("loads with the explicit scheme",
-           with({"Loads/Total force=0, -1",
-                 "Loads/Region lower corner=0.25, 0.4",
-                 "Loads/Region upper corner=0.75, 0.5"}));
   run_case("contact boundary with the explicit scheme",
            with({"Boundary conditions/Contact boundaries=bottom"}));
   run_case("contact walls meeting at a corner",

@@ -71,6 +71,7 @@ test(const bool axisymmetric = false)
   dirichlet.setup();
   std::vector<std::unique_ptr<Material>> materials;
   MaterialPoints<dim> points(grid, {"plastic_strain", "volumetric_strain"},
+                             false,
                              false);
   mpm_tests::seed_small_scene(prm, grid, materials, points);
   const Material &law = *materials[0];

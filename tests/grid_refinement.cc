@@ -55,7 +55,7 @@ test()
   GridBasis<dim> basis(grid);
 
   std::vector<std::unique_ptr<Material>> materials;
-  MaterialPoints<dim>                    points(grid, {}, false);
+  MaterialPoints<dim>                    points(grid, {}, false, false);
   mpm_tests::seed_small_scene(prm, grid, materials, points);
 
   Tensor<1, dim> gravity;

@@ -37,7 +37,7 @@ namespace mpm
       points.get_grid().is_axisymmetric() ? x[0] : 0.);
     const std::vector<double> &internal = scratch.force;
     Tensor<1, dim>             external = m * gravity;
-    if (points.has_implicit_fields())
+    if (points.has_point_loads())
       for (unsigned int d = 0; d < dim; ++d)
         external[d] += p[points.point_load_index() + d];
     external *= load_factor;

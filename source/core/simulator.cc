@@ -224,21 +224,19 @@ namespace mpm
                            "scene cannot hold both: the point output would "
                            "name them wrongly.");
       }
-    points = std::make_unique<MaterialPoints<dim>>(*grid,
-                                                   internal_names,
-                                                   scheme_name != "explicit");
+    loads = std::make_unique<PointLoads<dim>>(prm,
+                                              scheme_name == "quasi-static",
+                                              end_time);
+    points = std::make_unique<MaterialPoints<dim>>(
+      *grid,
+      internal_names,
+      scheme_name != "explicit",
+      scheme_name != "explicit" || loads->is_active());
     points->parse_outflow(prm);
     seeder = std::make_unique<PointSeeder<dim>>(*grid);
     seeder->check_bodies(bodies, materials);
     seeder->release_due(bodies, materials, *points, 0., 0.);
     seeder->apply_geostatic_stress(bodies, materials, gravity, *points);
-    loads = std::make_unique<PointLoads<dim>>(prm,
-                                              scheme_name == "quasi-static",
-                                              end_time);
-    if (loads->is_active() && scheme_name == "explicit")
-      throw InputError("Loads/Total force and Loads/Traction are applied by "
-                       "the quasi-static and Newmark schemes only; Time "
-                       "stepping/Scheme = explicit would ignore them.");
     loads->apply(*points);
     const bool has_inflow =
       std::any_of(bodies.begin(), bodies.end(), [](const Body<dim> &body) {

@@ -53,17 +53,19 @@ namespace mpm
   MaterialPoints<dim>::MaterialPoints(
     const Grid<dim> &               grid,
     const std::vector<std::string> &internal_variable_names,
-    const bool                      implicit_fields)
+    const bool                      implicit_steps,
+    const bool                      point_loads)
     : grid(grid)
     , triangulation(grid.get_triangulation())
     , mapping(grid.get_mapping())
     , particle_handler(triangulation,
                        mapping,
                        Layout::n_properties(internal_variable_names.size()) +
-                         (implicit_fields ? 2 * dim : 0))
+                         (implicit_steps ? dim : 0) + (point_loads ? dim : 0))
     , cell_cache(triangulation, mapping)
     , internal_names(internal_variable_names)
-    , implicit_fields(implicit_fields)
+    , implicit_steps(implicit_steps)
+    , point_loads(point_loads)
   {
     particle_handler.signals.particle_lost.connect(
       [this](const typename Particles::ParticleIterator<dim> &particle,
@@ -103,13 +105,12 @@ namespace mpm
     std::copy(internal_names.begin(),
               internal_names.end(),
               names.begin() + Layout::internal_variables);
-    if (implicit_fields)
-      {
-        for (unsigned int d = 0; d < dim; ++d)
-          names.emplace_back("acceleration");
-        for (unsigned int d = 0; d < dim; ++d)
-          names.emplace_back("point_load");
-      }
+    if (implicit_steps)
+      for (unsigned int d = 0; d < dim; ++d)
+        names.emplace_back("acceleration");
+    if (point_loads)
+      for (unsigned int d = 0; d < dim; ++d)
+        names.emplace_back("point_load");
     return names;
   }
 
@@ -121,11 +122,10 @@ namespace mpm
   {
     std::vector<unsigned int> vectors = {Layout::reference_size,
                                          Layout::velocity};
-    if (implicit_fields)
-      {
-        vectors.push_back(acceleration_index());
-        vectors.push_back(point_load_index());
-      }
+    if (implicit_steps)
+      vectors.push_back(acceleration_index());
+    if (point_loads)
+      vectors.push_back(point_load_index());
     return vectors;
   }
 
@@ -226,7 +226,7 @@ namespace mpm
     const types::particle_index n_before = Utilities::MPI::sum(
       particle_handler.n_locally_owned_particles(), comm);
     const types::particle_index removed_before = removed_points();
-    if (implicit_fields)
+    if (implicit_steps)
       carry_far_points();
     particle_handler.sort_particles_into_subdomains_and_cells();
 

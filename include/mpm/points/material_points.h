@@ -34,13 +34,14 @@ namespace mpm
 
     /**
      * `internal_variable_names`: the internal variables every point
-     * carries, named for the output. `implicit_fields`: give every point an
-     * acceleration and a point load (the implicit schemes need them), after
-     * the internal variables.
+     * carries, named for the output. After them, with `implicit_steps`
+     * (the implicit schemes, whose points may move more than a cell in a
+     * step) an acceleration, and with `point_loads` a point load.
      */
     MaterialPoints(const Grid<dim> &               grid,
                    const std::vector<std::string> &internal_variable_names,
-                   const bool                      implicit_fields);
+                   const bool                      implicit_steps,
+                   const bool                      point_loads);
 
     /** `Boundary conditions/Outflow boundaries`. */
     static void
@@ -111,27 +112,28 @@ namespace mpm
       return internal_names.size();
     }
 
-    /** Whether the points carry the implicit fields (acceleration, load). */
+    /** Whether the points carry a force at full load. */
     bool
-    has_implicit_fields() const
+    has_point_loads() const
     {
-      return implicit_fields;
+      return point_loads;
     }
 
-    /** Index of the acceleration (implicit fields only). */
+    /** Index of the acceleration (implicit steps only). */
     unsigned int
     acceleration_index() const
     {
-      Assert(implicit_fields, ExcInternalError());
+      Assert(implicit_steps, ExcInternalError());
       return Layout::internal_variables + n_internal_variables();
     }
 
-    /** Index of the force at full load (implicit fields only). */
+    /** Index of the force at full load (point loads only). */
     unsigned int
     point_load_index() const
     {
-      Assert(implicit_fields, ExcInternalError());
-      return Layout::internal_variables + n_internal_variables() + dim;
+      Assert(point_loads, ExcInternalError());
+      return Layout::internal_variables + n_internal_variables() +
+             (implicit_steps ? dim : 0);
     }
 
     /** Names of all properties, for output; vectors repeat their name. */
@@ -194,7 +196,8 @@ namespace mpm
     /** Finds the cell of a point that moved far (implicit runs). */
     GridTools::Cache<dim> cell_cache;
     const std::vector<std::string>  internal_names;
-    const bool                      implicit_fields;
+    const bool                      implicit_steps;
+    const bool                      point_loads;
 
     /** Filled by the particle_lost signal during a sort. */
     std::vector<Point<dim>> lost_positions;
