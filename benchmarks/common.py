@@ -34,11 +34,12 @@ def ensure_matplotlib():
 
 
 def scene_options():
-    """The options --shape-functions=NAME and --dilatation-rate=NAME of a
-    benchmark's command line: the settings they stand for, and a suffix
-    for the names of its output, empty without them."""
+    """The options --shape-functions=NAME, --dilatation-rate=NAME and
+    --geometry=NAME of a benchmark's command line: the settings they stand
+    for, and a suffix for the names of its output, empty without them."""
     entries = {"--shape-functions=": "Grid/Shape functions",
-               "--dilatation-rate=": "Time stepping/Dilatation rate"}
+               "--dilatation-rate=": "Time stepping/Dilatation rate",
+               "--geometry=": "Grid/Geometry"}
     settings, suffix = {}, ""
     for argument in sys.argv[1:]:
         for option, entry in entries.items():
