@@ -54,6 +54,11 @@ namespace mpm
     double s = std::max(
       1. - (old_stress[2][2] + dt * lambda * (L[0][0] + L[1][1])) / p_wave,
       0.5);
+    // Secant steps on tau_zz(s) = J sigma_zz, the first with the elastic
+    // slope: the law's full tangent costs several stress updates, and only
+    // its zz-zz entry is wanted. The tangent only where the secant's slope
+    // is not positive.
+    double previous_s = 0., previous_tau = 0.;
     for (unsigned int iteration = 0; iteration < 30; ++iteration)
       {
         set_stretch(s);
@@ -65,21 +70,29 @@ namespace mpm
         if (!std::isfinite(residual))
           break;
 
-        const SymmetricTensor<4, 3> c =
-          material.spatial_tangent(kinematics, old_stress, old_view);
-        const double J     = determinant(kinematics.F_new);
-        const double slope = J * (c[2][2][2][2] + 2. * residual) / s;
+        const double J   = determinant(kinematics.F_new);
+        const double tau = J * residual;
+        double       slope =
+          iteration > 0 ? (tau - previous_tau) / (s - previous_s) :
+                          J * (p_wave + 2. * residual) / s;
+        if (!(slope > 0.) || !std::isfinite(slope))
+          {
+            const SymmetricTensor<4, 3> c =
+              material.spatial_tangent(kinematics, old_stress, old_view);
+            slope = J * (c[2][2][2][2] + 2. * residual) / s;
+          }
         if (!(slope > 0.))
           break;
-        // Newton on tau_zz = J sigma_zz, kept within a factor 2 a step. A
-        // correction below the round-off of s leaves sigma_zz at the
-        // round-off of the update (a small stress reached from a large
-        // one).
-        const double correction = J * residual / slope;
+        // Kept within a factor 2 a step. A correction below the round-off
+        // of s leaves sigma_zz at the round-off of the update (a small
+        // stress reached from a large one).
+        const double correction = tau / slope;
         if (std::abs(correction) <=
             4. * std::numeric_limits<double>::epsilon() * s)
           return true;
-        s = std::clamp(s - correction, 0.5 * s, 2. * s);
+        previous_s   = s;
+        previous_tau = tau;
+        s            = std::clamp(s - correction, 0.5 * s, 2. * s);
       }
     restore();
     return false;
