@@ -56,10 +56,10 @@ run_scene(const std::string &scene, const std::vector<std::string> &settings)
  * weight: the closed forms below hold either way.
  */
 void
-free_fall(const std::string &             scene,
-          const std::string &             vertical,
-          const double                    pic_fraction = 0.,
-          std::vector<std::string>        settings     = {})
+free_fall(const std::string &      scene,
+          const std::string &      vertical,
+          const double             pic_fraction = 0.,
+          std::vector<std::string> settings     = {})
 {
   settings.push_back("Time stepping/PIC fraction=" +
                      std::to_string(pic_fraction));

@@ -129,15 +129,13 @@ namespace mpm
       rows.add_indices(tie_masters);
     DynamicSparsityPattern dsp(rows);
     // Every pair of nodes that share a point couples. Constrained rows
-    // keep their entries, so that releasing a contact node needs no new
-    // pattern.
+    // keep their entries, and every component's tie is in, so that
+    // releasing a contact node (whose component may then be tied) needs
+    // no new pattern.
+    const AffineConstraints<double> &ties = reached_nodes.tie_constraints();
     for (const auto &group : state.groups)
       {
         state.constraints.add_entries_local_to_global(group.dofs, dsp, true);
-        // A component that a contact wall holds now is tied once the wall
-        // lets go, with no new pattern.
-        const AffineConstraints<double> &ties =
-          reached_nodes.tie_constraints();
         if (ties.n_constraints() > 0)
           ties.add_entries_local_to_global(group.dofs, dsp, true);
       }
