@@ -331,6 +331,9 @@ main(int argc, char **argv)
                  "Bodies/block/Upper corner=6, 6"}));
   run_case("Stop after without checkpoints",
            with({"Checkpoint/Stop after=60"}));
+  run_case("load balancing with no weight on cells or points",
+           with({"Load balance/Cell weight=0",
+                 "Load balance/Point weight=0"}));
   {
     // A run that leaves a checkpoint (at its end), to continue wrongly.
     const std::vector<std::string> checkpointed = {

@@ -15,7 +15,7 @@ namespace mpm
   namespace
   {
     // Bumped whenever what the classes save changes.
-    constexpr unsigned int format_version = 8;
+    constexpr unsigned int format_version = 9;
   } // namespace
 
 
@@ -315,10 +315,13 @@ namespace mpm
   bool
   Checkpoint::may_change(const std::string &entry) const
   {
-    return entry.rfind("Checkpoint/", 0) == 0 ||
-           std::find(entries_that_may_change.begin(),
-                     entries_that_may_change.end(),
-                     entry) != entries_that_may_change.end();
+    if (entry.rfind("Checkpoint/", 0) == 0)
+      return true;
+    for (const std::string &allowed : entries_that_may_change)
+      if (allowed == entry ||
+          (allowed.back() == '/' && entry.rfind(allowed, 0) == 0))
+        return true;
+    return false;
   }
 
 
@@ -328,7 +331,10 @@ namespace mpm
   {
     std::string list;
     for (const auto &entry : entries_that_may_change)
-      list += entry + (&entry == &entries_that_may_change.back() ? " " : ", ");
+      list += (entry.back() == '/' ?
+                 "the " + entry.substr(0, entry.size() - 1) + " entries" :
+                 entry) +
+              (&entry == &entries_that_may_change.back() ? " " : ", ");
     return list + "and the Checkpoint entries";
   }
 

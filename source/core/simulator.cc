@@ -56,6 +56,7 @@ namespace mpm
     VtuOutput<dim>::declare_parameters(prm);
     TimeSeries<dim>::declare_parameters(prm);
     Checkpoint::declare_parameters(prm);
+    LoadBalance<dim>::declare_parameters(prm);
 
     prm.enter_subsection("Materials");
     for (const auto &name : names.materials)
@@ -319,6 +320,10 @@ namespace mpm
       "Output/Directory", "Newton/Check tangent"};
     for (const std::string &entry : scheme->entries_that_may_change())
       entries_that_may_change.push_back(entry);
+    for (const std::string &entry : LoadBalance<dim>::entries_that_may_change())
+      entries_that_may_change.push_back(entry);
+    load_balance = std::make_unique<LoadBalance<dim>>(
+      prm, *grid, *points, output_directory, restart, pcout);
     checkpoint = std::make_unique<Checkpoint>(prm,
                                               output_directory,
                                               entries_that_may_change,
@@ -433,7 +438,9 @@ namespace mpm
   Simulator<dim>::serialize(Archive &archive, const unsigned int)
   {
     archive &time &step &dt &next_output &next_time_series;
-    archive &*points &*seeder &*vtu_output &*time_series;
+    // The partition before the points: they load into the cells their
+    // rank owned.
+    archive &*load_balance &*points &*seeder &*vtu_output &*time_series;
     if constexpr (Archive::is_saving::value)
       scheme->save(archive);
     else
@@ -508,6 +515,13 @@ namespace mpm
                 bodies, materials, *points, time, time_tolerance))
             scheme->points_added();
           scheme->end_next_step_by(seeder->next_release_time(bodies));
+        }
+        // Between the step's outputs and the next step, and after the points
+        // released now: a run continued from a checkpoint written at this
+        // step makes the same check.
+        {
+          TimerOutput::Scope t(timer, "load balance");
+          load_balance->check(time, step);
         }
         particle_steps += points->n_global_points();
         dt = scheme->advance(time, step);

@@ -200,6 +200,21 @@ namespace mpm
 
   template <int dim>
   void
+  Grid<dim>::repartition(const CellWeight &weight)
+  {
+    // Connected only for this call: the refinements at the start balance
+    // cells, as there are no points yet.
+    const boost::signals2::scoped_connection weighting =
+      triangulation.signals.weight.connect(weight);
+    before_change();
+    triangulation.repartition();
+    update();
+  }
+
+
+
+  template <int dim>
+  void
   Grid<dim>::update()
   {
     node_dof_handler.distribute_dofs(node_element);

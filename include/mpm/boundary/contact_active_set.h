@@ -10,6 +10,7 @@
 #include <map>
 #include <set>
 #include <utility>
+#include <vector>
 
 namespace mpm
 {
@@ -205,6 +206,64 @@ namespace mpm
       held    = remembered;
       sliding = remembered_sliding;
       started = remembered_started;
+    }
+
+    /**
+     * The held pairs in a form that outlives the node numbers: per pair
+     * the node's coordinates (3 entries, from `position`), the wall, 1 if
+     * it slides, and the direction (3 entries); and a last entry 1 if a
+     * step was solved. The nodes of a grid that is repartitioned are
+     * numbered anew, and pass to other ranks.
+     */
+    template <class Position>
+    std::vector<double>
+    by_position(const Position &position) const
+    {
+      std::vector<double> pairs;
+      for (const auto &pair : held)
+        {
+          const std::array<double, 3> x = position(pair.first);
+          pairs.insert(pairs.end(), x.begin(), x.end());
+          pairs.push_back(pair.second);
+          const auto found = sliding.find(pair);
+          pairs.push_back(found != sliding.end());
+          const std::array<double, 3> d =
+            found != sliding.end() ? found->second : std::array<double, 3>{};
+          pairs.insert(pairs.end(), d.begin(), d.end());
+        }
+      pairs.push_back(started);
+      return pairs;
+    }
+
+    /**
+     * The set from by_position() of each rank (empty where a rank gave
+     * none), for the nodes this rank knows: `node(x)` gives the node at
+     * coordinates x, or numbers::invalid_unsigned_int (all bits set). The
+     * current set is replaced.
+     */
+    template <class Node>
+    void
+    renumber(const std::vector<std::vector<double>> &by_rank, const Node &node)
+    {
+      *this = ContactActiveSet();
+      for (const std::vector<double> &pairs : by_rank)
+        if (!pairs.empty())
+        {
+          constexpr unsigned int size = 8;
+          for (unsigned int k = 0; k + size < pairs.size(); k += size)
+            {
+              const unsigned int n =
+                node(std::array<double, 3>{pairs[k], pairs[k + 1], pairs[k + 2]});
+              if (n == static_cast<unsigned int>(-1))
+                continue;
+              const std::pair<unsigned int, unsigned int> pair = {
+                n, static_cast<unsigned int>(pairs[k + 3])};
+              held.insert(pair);
+              if (pairs[k + 4] == 1.)
+                sliding[pair] = {pairs[k + 5], pairs[k + 6], pairs[k + 7]};
+            }
+          started = started || pairs.back() == 1.;
+        }
     }
 
     /** The held pairs and how they slide, for Checkpoint. */

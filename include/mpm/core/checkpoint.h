@@ -36,7 +36,8 @@ namespace mpm
     declare_parameters(ParameterHandler &prm);
 
     /**
-     * `entries_that_may_change` ('Section/entry'), besides the Checkpoint
+     * `entries_that_may_change` ('Section/entry', or 'Section/' for a whole
+     * subsection), besides the Checkpoint
      * entries, may differ between the run that wrote a checkpoint and the
      * one that continues it; any other entry of the scene must not.
      */

@@ -15,6 +15,7 @@
 #include <boost/signals2/signal.hpp>
 
 #include <array>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -74,6 +75,22 @@ namespace mpm
      */
     void
     refine_globally(const unsigned int n);
+
+    /**
+     * The extra cost of a cell in a repartition (deal.II's `weight` signal,
+     * summed over the cell's children or parent as that signal documents).
+     */
+    using CellWeight = std::function<unsigned int(
+      const typename Triangulation<dim>::cell_iterator &,
+      const typename Triangulation<dim>::CellStatus)>;
+
+    /**
+     * Give the ranks new shares of the cells, balanced by `weight`: fire
+     * `before_change`, let p4est repartition, number the nodes and fire
+     * `changed`. The cells stay the same.
+     */
+    void
+    repartition(const CellWeight &weight);
 
     /**
      * Move every vertex x to transformation(x); then number the nodes and

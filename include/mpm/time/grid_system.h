@@ -234,8 +234,12 @@ namespace mpm
      * previous step's set.
      */
     ContactActiveSet contact;
-    /** A changed grid numbers its nodes anew: the contact set starts over. */
-    boost::signals2::scoped_connection grid_changed;
+    /**
+     * A repartitioned grid numbers its nodes anew and gives them to other
+     * ranks: the contact set is carried by the nodes' coordinates.
+     */
+    std::vector<double>                contact_by_position;
+    boost::signals2::scoped_connection grid_changing, grid_changed;
   };
 } // namespace mpm
 
