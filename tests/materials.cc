@@ -13,13 +13,18 @@
 //   closed form of a hypoelastic law with constant stiffness;
 // - linear elastic (Jaumann): a pure spin applied to a stressed point
 //   rotates the stress and keeps its invariants.
+// - the closed-form principal axes of the 2D scenes' tensors (t_xz = t_yz
+//   = 0) against deal.II's Jacobi rotations, with equal and nearly equal
+//   eigenvalues (planted: a sign error in the first axis fails it).
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
 #include <mpm/materials/material.h>
+#include <mpm/materials/principal_axes.h>
 
 #include <cmath>
+#include <random>
 
 #include "tests.h"
 
@@ -162,6 +167,75 @@ linear_elastic()
   }
 }
 
+/**
+ * The closed-form principal axes of a tensor with t_xz = t_yz = 0 (the 2D
+ * scenes' finite-strain laws use them) against deal.II's Jacobi rotations:
+ * random tensors, stretch-like (near I, as b of a small step) and
+ * stress-like (any sign), equal and nearly equal in-plane eigenvalues, and
+ * t_zz above, between and below them. The eigenvalues must agree, largest
+ * first, and sum lambda v v^T must give back t; a tensor with t_xz != 0
+ * goes to Jacobi itself.
+ */
+void
+principal_axes_of_plane_tensors()
+{
+  std::mt19937                           random(7);
+  std::uniform_real_distribution<double> uniform(-1., 1.);
+  std::vector<SymmetricTensor<2, 3>>     cases;
+  for (unsigned int k = 0; k < 2000; ++k)
+    {
+      SymmetricTensor<2, 3> t;
+      const double          size = k % 2 ? 1e5 : 0.05;
+      t[0][0] = (k % 2 ? 0. : 1.) + size * uniform(random);
+      t[1][1] = (k % 2 ? 0. : 1.) + size * uniform(random);
+      t[0][1] = size * uniform(random);
+      t[2][2] = (k % 2 ? 0. : 1.) + size * uniform(random);
+      cases.push_back(t);
+    }
+  for (const double gap : {0., 1e-14, 1e-9})
+    for (const double zz : {2., 1., 0.5})
+      {
+        SymmetricTensor<2, 3> t;
+        t[0][0] = 1.;
+        t[1][1] = 1. + gap;
+        t[2][2] = zz;
+        cases.push_back(t);
+      }
+  double value_gap = 0., rebuild_gap = 0.;
+  bool   ordered   = true;
+  for (const auto &t : cases)
+    {
+      const auto axes  = mpm::principal_axes(t);
+      const auto jacobi = eigenvectors(t, SymmetricTensorEigenvectorMethod::jacobi);
+      SymmetricTensor<2, 3> rebuilt;
+      for (unsigned int a = 0; a < 3; ++a)
+        {
+          value_gap = std::max(value_gap,
+                               std::abs(axes[a].first - jacobi[a].first) /
+                                 t.norm());
+          rebuilt += axes[a].first *
+                     symmetrize(outer_product(axes[a].second, axes[a].second));
+        }
+      rebuild_gap = std::max(rebuild_gap, (rebuilt - t).norm() / t.norm());
+      ordered = ordered && axes[0].first >= axes[1].first &&
+                axes[1].first >= axes[2].first;
+    }
+  mpm_tests::check("principal axes in closed form (t_xz = t_yz = 0): the "
+                   "eigenvalues of Jacobi's rotations to 1e-14, largest "
+                   "first, and sum lambda v v^T = t to 1e-14",
+                   value_gap < 1e-14 && rebuild_gap < 1e-14 && ordered);
+
+  SymmetricTensor<2, 3> general = cases[0];
+  general[0][2]                 = 0.01;
+  const auto axes               = mpm::principal_axes(general);
+  SymmetricTensor<2, 3> rebuilt;
+  for (unsigned int a = 0; a < 3; ++a)
+    rebuilt +=
+      axes[a].first * symmetrize(outer_product(axes[a].second, axes[a].second));
+  mpm_tests::check("a tensor with t_xz != 0 is decomposed too (1e-14)",
+                   (rebuilt - general).norm() < 1e-14 * general.norm());
+}
+
 int
 main(int argc, char **argv)
 {
@@ -174,4 +248,5 @@ main(int argc, char **argv)
     return eps / std::exp(eps);
   });
   linear_elastic();
+  principal_axes_of_plane_tensors();
 }

@@ -1,6 +1,8 @@
 #include <mpm/base/input_error.h>
 #include <mpm/materials/hencky_plasticity.h>
+#include <mpm/materials/principal_axes.h>
 
+#include <array>
 #include <cmath>
 #include <sstream>
 
@@ -47,9 +49,9 @@ namespace mpm
       symmetrize(Tensor<2, 3>(f * Tensor<2, 3>(b_old) * transpose(f)));
 
     Step         step;
+    step.b_trial = b_trial;
     Tensor<1, 3> trial_tau;
-    const auto   eigen =
-      eigenvectors(b_trial, SymmetricTensorEigenvectorMethod::jacobi);
+    const auto   eigen = principal_axes(b_trial);
     const Tensor<2, 3> D = principal_stiffness();
     Tensor<1, 3>       eps;
     for (unsigned int a = 0; a < 3; ++a)
@@ -77,17 +79,23 @@ namespace mpm
       kinematics,
       ArrayView<const double>(internal_variables.data(),
                               internal_variables.size()));
-    // The elastic strains of the returned stress rebuild b_e.
-    const Tensor<1, 3> eps_elastic =
-      invert(principal_stiffness()) * step.result.tau;
-    SymmetricTensor<2, 3> b_new;
+    std::array<SymmetricTensor<2, 3>, 3> m;
     stress = 0;
     for (unsigned int a = 0; a < 3; ++a)
       {
-        const SymmetricTensor<2, 3> m = symmetrize(
-          outer_product(step.directions[a], step.directions[a]));
-        b_new += std::exp(2. * eps_elastic[a]) * m;
-        stress += step.result.tau[a] / step.J * m;
+        m[a] = symmetrize(outer_product(step.directions[a], step.directions[a]));
+        stress += step.result.tau[a] / step.J * m[a];
+      }
+    // An elastic step keeps the trial b_e; after a return, the elastic
+    // strains of the returned stress rebuild it.
+    SymmetricTensor<2, 3> b_new = step.b_trial;
+    if (step.result.plastic)
+      {
+        const Tensor<1, 3> eps_elastic =
+          invert(principal_stiffness()) * step.result.tau;
+        b_new = 0;
+        for (unsigned int a = 0; a < 3; ++a)
+          b_new += std::exp(2. * eps_elastic[a]) * m[a];
       }
     b_new -= unit_symmetric_tensor<3>();
     for (unsigned int k = 0; k < 6; ++k)
@@ -104,8 +112,7 @@ namespace mpm
     const ArrayView<double> &    internal_variables,
     const std::string &          who) const
   {
-    const auto eigen =
-      eigenvectors(stress, SymmetricTensorEigenvectorMethod::jacobi);
+    const auto eigen = principal_axes(stress);
     Tensor<1, 3> tau;
     for (unsigned int a = 0; a < 3; ++a)
       tau[a] = eigen[a].first;

@@ -1,10 +1,12 @@
-#include <deal.II/lac/full_matrix.h>
+#include <deal.II/base/symmetric_tensor.h>
+#include <deal.II/base/tensor.h>
 
 #include <mpm/base/input_error.h>
 #include <mpm/base/parse.h>
 #include <mpm/materials/mohr_coulomb.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -114,6 +116,7 @@ namespace mpm
                    "would never act.";
         throw InputError(message.str());
       }
+    peak_planes = planes_of({peak_cohesion, peak_friction_angle});
   }
 
 
@@ -132,15 +135,25 @@ namespace mpm
 
 
 
-  std::vector<MohrCoulomb::Plane>
+  MohrCoulomb::Planes
   MohrCoulomb::planes(const double plastic_strain) const
   {
-    const auto [c, phi] = strength(plastic_strain);
+    if (softening_plastic_strain == 0. || !(plastic_strain > 0.))
+      return peak_planes;
+    return planes_of(strength(plastic_strain));
+  }
+
+
+
+  MohrCoulomb::Planes
+  MohrCoulomb::planes_of(const std::pair<double, double> &strength) const
+  {
+    const auto [c, phi] = strength;
     const double psi    = std::min(dilatancy_angle, phi);
     const double k      = (1. + std::sin(phi)) / (1. - std::sin(phi));
     const double m      = (1. + std::sin(psi)) / (1. - std::sin(psi));
     const double sigma_c = 2. * c * std::sqrt(k);
-    std::vector<Plane> result = {
+    Planes result = {
       {Tensor<1, 3>({k, 0., -1.}), Tensor<1, 3>({m, 0., -1.}), sigma_c},
       {Tensor<1, 3>({0., k, -1.}), Tensor<1, 3>({0., m, -1.}), sigma_c},
       {Tensor<1, 3>({k, -1., 0.}), Tensor<1, 3>({m, -1., 0.}), sigma_c}};
@@ -166,8 +179,8 @@ namespace mpm
 
 
   double
-  MohrCoulomb::largest_violation(const std::vector<Plane> &surfaces,
-                                 const Tensor<1, 3> &      tau)
+  MohrCoulomb::largest_violation(const Planes &      surfaces,
+                                 const Tensor<1, 3> &tau)
   {
     Tensor<1, 3> sorted = tau;
     std::sort(&sorted[0], &sorted[0] + 3, std::greater<double>());
@@ -184,12 +197,13 @@ namespace mpm
                                        const double plastic_strain) const
   {
     const Tensor<2, 3>       D        = principal_stiffness();
-    const std::vector<Plane> surfaces = planes(plastic_strain);
+    const Planes             surfaces = planes(plastic_strain);
     Return                   r;
     r.tau     = trial_tau;
     r.tangent = D;
     if (largest_violation(surfaces, trial_tau) <= 0.)
       return r;
+    r.plastic = true;
 
     // Work in the ordered frame: sigma_1 >= sigma_2 >= sigma_3.
     std::array<unsigned int, 3> order = {{0, 1, 2}};
@@ -213,33 +227,46 @@ namespace mpm
     Tensor<1, 3> sigma;
     Tensor<2, 3> tangent;
     Tensor<1, 3> plastic_strain_step;
-    // The return to the planes `active`: true if it is admissible.
-    auto return_to = [&](const std::vector<unsigned int> &active) {
-      const unsigned int        n = active.size();
-      std::vector<Tensor<1, 3>> Db(n), Da(n);
-      FullMatrix<double>        M(n, n);
-      double                    scale = 1.;
+    // What every trial below needs, per plane: D b, D a, a . D b of each
+    // pair, and the trial's violation. Fixed sizes throughout: the
+    // explicit scheme returns most points of a flowing granular body every
+    // step, and allocations dominated it.
+    const unsigned int          n_planes = surfaces.size();
+    std::array<Tensor<1, 3>, 6> Db, Da;
+    std::array<double, 6>       violation, norm;
+    for (unsigned int i = 0; i < n_planes; ++i)
+      {
+        Db[i]        = D * surfaces[i].b;
+        Da[i]        = D * surfaces[i].a;
+        violation[i] = surfaces[i].a * sigma_trial - surfaces[i].r;
+        norm[i]      = surfaces[i].a.norm() * Db[i].norm();
+      }
+
+    // The return to the n planes `active`: true if it is admissible.
+    auto return_to = [&](const std::array<unsigned int, 3> &active,
+                         const unsigned int                 n) {
+      // M_ij = a_i . D b_j, padded with the identity beyond n, so that its
+      // determinant and inverse are those of the n x n block.
+      Tensor<2, 3> M     = unit_symmetric_tensor<3>();
+      double       scale = 1.;
       for (unsigned int i = 0; i < n; ++i)
         {
-          Db[i] = D * surfaces[active[i]].b;
-          Da[i] = D * surfaces[active[i]].a;
-          scale *= surfaces[active[i]].a.norm() * Db[i].norm();
+          scale *= norm[active[i]];
           for (unsigned int j = 0; j < n; ++j)
-            M(i, j) = surfaces[active[i]].a * (D * surfaces[active[j]].b);
+            M[i][j] = surfaces[active[i]].a * Db[active[j]];
         }
-      if (std::abs(M.determinant()) <= 1e-10 * scale)
+      if (std::abs(determinant(M)) <= 1e-10 * scale)
         return false;
-      M.gauss_jordan();
-      std::vector<double> gamma(n, 0.);
-      Tensor<1, 3>        s = sigma_trial;
+      const Tensor<2, 3>    M_inverse = invert(M);
+      std::array<double, 3> gamma     = {};
+      Tensor<1, 3>          s         = sigma_trial;
       for (unsigned int i = 0; i < n; ++i)
         {
           for (unsigned int j = 0; j < n; ++j)
-            gamma[i] += M(i, j) * (surfaces[active[j]].a * sigma_trial -
-                                   surfaces[active[j]].r);
+            gamma[i] += M_inverse[i][j] * violation[active[j]];
           if (gamma[i] * (lambda + 2. * mu) < -tolerance)
             return false;
-          s -= gamma[i] * Db[i];
+          s -= gamma[i] * Db[active[i]];
         }
       if (!admissible(s))
         return false;
@@ -250,23 +277,23 @@ namespace mpm
         {
           plastic_strain_step += gamma[i] * surfaces[active[i]].b;
           for (unsigned int j = 0; j < n; ++j)
-            tangent -= M(i, j) * outer_product(Db[i], Da[j]);
+            tangent -=
+              M_inverse[i][j] * outer_product(Db[active[i]], Da[active[j]]);
         }
       return true;
     };
 
     // Fewest planes first: one, then the lines of two, the points of three.
-    const unsigned int n_planes = surfaces.size();
-    bool               done     = false;
+    bool done = false;
     for (unsigned int i = 0; i < n_planes && !done; ++i)
-      done = return_to({i});
+      done = return_to({{i, 0, 0}}, 1);
     for (unsigned int i = 0; i < n_planes && !done; ++i)
       for (unsigned int j = i + 1; j < n_planes && !done; ++j)
-        done = return_to({i, j});
+        done = return_to({{i, j, 0}}, 2);
     for (unsigned int i = 0; i < n_planes && !done; ++i)
       for (unsigned int j = i + 1; j < n_planes && !done; ++j)
         for (unsigned int l = j + 1; l < n_planes && !done; ++l)
-          done = return_to({i, j, l});
+          done = return_to({{i, j, l}}, 3);
     // The apex, where the flow of the planes (psi = 0: deviatoric) cannot
     // reach: the stress goes to it and the rest of the step is plastic.
     if (!done)

@@ -60,6 +60,7 @@ namespace mpm
     const double f = yield_function(trial_tau, plastic_strain);
     if (f <= 0.)
       return r;
+    r.plastic = true;
 
     const double p = (trial_tau[0] + trial_tau[1] + trial_tau[2]) / 3.;
     Tensor<1, 3> s = trial_tau;

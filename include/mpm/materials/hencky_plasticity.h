@@ -69,6 +69,8 @@ namespace mpm
       Tensor<2, 3> tangent;
       /** Increment of the equivalent plastic strain. */
       double plastic_strain_increment = 0.;
+      /** Whether the trial state was returned (false: it is admissible). */
+      bool plastic = false;
     };
 
     /**
@@ -101,6 +103,7 @@ namespace mpm
     /** The trial state of a step and its return. */
     struct Step
     {
+      SymmetricTensor<2, 3>       b_trial;
       Tensor<1, 3>                beta;
       std::array<Tensor<1, 3>, 3> directions;
       Return                      result;

@@ -3,7 +3,7 @@
 
 #include <mpm/materials/hencky_plasticity.h>
 
-#include <vector>
+#include <boost/container/static_vector.hpp>
 
 namespace mpm
 {
@@ -67,12 +67,19 @@ namespace mpm
      * plane, the planes that meet it at the edges tau_1 = tau_2 and
      * tau_2 = tau_3, then, with a cut-off, tau_1, tau_2, tau_3 <= t.
      */
-    std::vector<Plane>
+    /** At most three planes and three cut-offs; no allocation per point. */
+    using Planes = boost::container::static_vector<Plane, 6>;
+
+    Planes
     planes(double plastic_strain) const;
+
+    /** The planes of `strength` (c, phi). */
+    Planes
+    planes_of(const std::pair<double, double> &strength) const;
 
     /** max_i (a_i . sigma - r_i) over the planes, sigma sorted descending. */
     static double
-    largest_violation(const std::vector<Plane> &surfaces,
+    largest_violation(const Planes &      surfaces,
                       const Tensor<1, 3> &      tau);
 
     /** Cohesion and friction angle at a plastic strain (softening). */
@@ -88,6 +95,8 @@ namespace mpm
     double softening_plastic_strain;
     bool   tension_cut_off;
     double tensile_strength;
+    /** The planes before any softening, kept: their sines are not cheap. */
+    Planes peak_planes;
   };
 } // namespace mpm
 
