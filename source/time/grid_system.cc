@@ -62,26 +62,21 @@ namespace mpm
     prm.leave_subsection();
     fe_collection.push_back(FESystem<dim>(FE_Q<dim>(1), dim));
     fe_collection.push_back(FESystem<dim>(FE_Nothing<dim>(), dim));
-    grid_changing = grid.before_change.connect([this, &grid]() {
-      contact_by_position =
-        contact.by_position([&grid](const unsigned int node) {
-          std::array<double, 3> x = {};
-          for (unsigned int d = 0; d < dim; ++d)
-            x[d] = grid.node_position(node)[d];
-          return x;
-        });
+    const auto coordinates = [&grid](const unsigned int node) {
+      std::array<double, 3> x = {};
+      for (unsigned int d = 0; d < dim; ++d)
+        x[d] = grid.node_position(node)[d];
+      return x;
+    };
+    grid_changing = grid.before_change.connect([this, coordinates]() {
+      contact_by_position = contact.by_position(coordinates);
     });
-    grid_changed = grid.changed.connect([this, &grid]() {
+    grid_changed = grid.changed.connect([this, &grid, coordinates]() {
       // The nodes are vertices of the grid, so their coordinates match to
       // the bit.
       std::map<std::array<double, 3>, unsigned int> node_at;
       for (unsigned int node = 0; node < grid.n_nodes(); ++node)
-        {
-          std::array<double, 3> x = {};
-          for (unsigned int d = 0; d < dim; ++d)
-            x[d] = grid.node_position(node)[d];
-          node_at.emplace(x, node);
-        }
+        node_at.emplace(coordinates(node), node);
       contact.renumber(Utilities::MPI::all_gather(grid.get_communicator(),
                                                   contact_by_position),
                        [&](const std::array<double, 3> &x) {
