@@ -107,6 +107,75 @@ namespace
                      "of each column's largest value",
                      gap < 1e-9);
   }
+  /**
+   * A balanced Newmark run stopped at `stop` (a step boundary: the steps
+   * are fixed) after several repartitions and continued with --restart
+   * repeats the run made in one go, to the time series' last digit: the
+   * restart must rebuild the partition and the rank-local numbering of
+   * cells and nodes that the run had, in which the contact set and the
+   * order of the points are saved.
+   */
+  void
+  continued(const std::string &             title,
+            const std::string &             scene,
+            const std::vector<std::string> &settings,
+            const unsigned int              interval,
+            const double                    stop,
+            const double                    end)
+  {
+    deallog << "--- " << title << std::endl;
+    const std::string name = "output-" + title.substr(0, title.find(' '));
+    std::vector<std::string> balanced = settings;
+    balanced.push_back("Load balance/Check interval=" +
+                       std::to_string(interval));
+    balanced.push_back("Load balance/Imbalance tolerance=1");
+    balanced.push_back("Checkpoint/Wall time interval=1e9");
+    std::ostringstream end_time, stop_time;
+    end_time << "Time stepping/End time=" << end;
+    stop_time << "Time stepping/End time=" << stop;
+    std::vector<std::string> straight = balanced, first = balanced;
+    straight.push_back(end_time.str());
+    first.push_back(stop_time.str());
+    auto whole = mpm_tests::run_scene(scene, name + "-whole", straight);
+    mpm_tests::run_scene(scene, name + "-parts", first);
+
+    std::vector<std::string> arguments = {
+      "--restart",
+      "--set",
+      "Output/Directory=" + name + "-parts",
+      "--set",
+      "Output/Write ParaView output=false"};
+    std::vector<std::string> second = balanced;
+    second.push_back(end_time.str());
+    for (const std::string &s : second)
+      {
+        arguments.push_back("--set");
+        arguments.push_back(s);
+      }
+    arguments.push_back(mpm_tests::source_file(scene));
+    const int code = mpm::run_command_line(arguments);
+    MPI_Barrier(MPI_COMM_WORLD);
+    if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) != 0)
+      return;
+    auto parts  = mpm_tests::read_csv(name + "-parts/time_series.csv");
+    auto record = mpm_tests::read_csv(name + "-parts/load_balance.csv");
+    auto record_whole =
+      mpm_tests::read_csv(name + "-whole/load_balance.csv");
+    unsigned int before_stop = 0;
+    for (unsigned int n = 0; n < record["time"].size(); ++n)
+      before_stop += record["repartitioned"][n] == 1. &&
+                     record["time"][n] < stop - 1e-12;
+    deallog << before_stop << " repartitions before the stop" << std::endl;
+    mpm_tests::check("the continued part exits with 0, after at least two "
+                     "repartitions before the stop",
+                     code == 0 && before_stop >= 2);
+    mpm_tests::check("load_balance.csv holds each check once, as the run "
+                     "made in one go does",
+                     record["step"] == record_whole["step"]);
+    mpm_tests::check("the time series equals the run made in one go to the "
+                     "last digit",
+                     largest_difference(whole, parts) == 0.);
+  }
 } // namespace
 
 
@@ -150,5 +219,22 @@ main(int argc, char **argv)
            "Newmark/Bossak alpha=-0.3"},
           10,
           1.3);
+
+  // Stopped at step 7, after the checks at 0, 3 and 6 repartitioned (the
+  // later End time entry wins).
+  continued("Newmark column collapse continued after 3 repartitions",
+            "../prm/column_collapse.prm",
+            newmark,
+            3,
+            0.035,
+            0.07);
+  continued("friction block continued after 5 repartitions, Newmark",
+            "scenes/friction_block.prm",
+            {"Time stepping/Scheme=Newmark",
+             "Time stepping/Time step=0.005",
+             "Newmark/Bossak alpha=-0.3"},
+            10,
+            0.25,
+            0.4);
   return 0;
 }

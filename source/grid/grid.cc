@@ -82,7 +82,14 @@ namespace mpm
 
   template <int dim>
   Grid<dim>::Grid(ParameterHandler &prm, const MPI_Comm communicator)
-    : triangulation(communicator)
+    // Rebuilt from the coarse mesh at every repartition, so that the cells'
+    // local order, and with it the node numbering and every sum over
+    // cells, depends on the partition only, not on how it was reached: a
+    // run continued from a checkpoint restores the partition directly.
+    : triangulation(communicator,
+                    Triangulation<dim>::none,
+                    parallel::distributed::Triangulation<
+                      dim>::mesh_reconstruction_after_repartitioning)
     , node_element(1)
     , node_dof_handler(triangulation)
   {

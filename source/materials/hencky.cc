@@ -21,7 +21,8 @@ namespace mpm
     const Tensor<2, 3> &        F = kinematics.F_new;
     const SymmetricTensor<2, 3> b = symmetrize(Tensor<2, 3>(F * transpose(F)));
     SymmetricTensor<2, 3>       log_strain;
-    for (const auto &[value, direction] : principal_axes(b))
+    for (const auto &[value, direction] :
+         principal_axes(b, SymmetricTensorEigenvectorMethod::ql_implicit_shifts))
       log_strain += 0.5 * std::log(value) *
                     symmetrize(outer_product(direction, direction));
     const SymmetricTensor<2, 3> tau =

@@ -9,6 +9,7 @@
 #include <boost/serialization/utility.hpp>
 #include <boost/serialization/vector.hpp>
 
+#include <filesystem>
 #include <iomanip>
 #include <map>
 
@@ -72,14 +73,33 @@ namespace mpm
       throw InputError("Load balance: Cell weight and Point weight are both "
                        "0, so there is nothing to balance.");
 
-    const MPI_Comm communicator = grid.get_communicator();
-    if (interval == 0 || Utilities::MPI::this_mpi_process(communicator) != 0)
-      return;
-    const std::string name = directory + "/load_balance.csv";
-    file.open(name, continued ? std::ios::app : std::ios::out);
-    if (!file)
-      throw InputError("Cannot write " + name + ".");
+    filename = directory + "/load_balance.csv";
+    // A continued run opens the file in load(), cut to the checkpoint.
     if (!continued)
+      open_file(0);
+  }
+
+
+
+  template <int dim>
+  void
+  LoadBalance<dim>::open_file(const std::uint64_t continue_at)
+  {
+    if (interval == 0 ||
+        Utilities::MPI::this_mpi_process(grid.get_communicator()) != 0)
+      return;
+    // The rows written after the checkpoint go; a file that is not there
+    // or shorter (the run that wrote the checkpoint made no checks) starts
+    // anew.
+    std::error_code error;
+    const auto      size = std::filesystem::file_size(filename, error);
+    const bool      append = continue_at > 0 && !error && size >= continue_at;
+    if (append)
+      std::filesystem::resize_file(filename, continue_at, error);
+    file.open(filename, append ? std::ios::app : std::ios::out);
+    if (!file)
+      throw InputError("Cannot write " + filename + ".");
+    if (!append)
       file << "time,step,ranks,points_max,points_mean,point_imbalance,"
               "weight_imbalance,repartitioned\n";
     file << std::setprecision(8);
@@ -169,9 +189,11 @@ namespace mpm
         unsigned int n = 0;
         switch (status)
           {
+            case Triangulation<dim>::CELL_INVALID:
+              // Not an active cell (the signal's rules, as in step-68).
+              break;
             case Triangulation<dim>::CELL_PERSIST:
             case Triangulation<dim>::CELL_REFINE:
-            case Triangulation<dim>::CELL_INVALID:
               n = points_in(Active(cell));
               if (n > 0)
                 last_points_in.emplace_back(
@@ -212,7 +234,10 @@ namespace mpm
   void
   LoadBalance<dim>::save(Archive &archive, const unsigned int) const
   {
-    archive << repartitioned_by_weights << last_cell_weight
+    // Only rank 0 writes the file; the others save a length of 0.
+    const std::uint64_t csv_length =
+      file.is_open() ? static_cast<std::uint64_t>(file.tellp()) : 0;
+    archive << csv_length << repartitioned_by_weights << last_cell_weight
             << last_point_weight << last_points_in;
   }
 
@@ -226,7 +251,10 @@ namespace mpm
     bool         weighted;
     unsigned int saved_cell_weight, saved_point_weight;
     std::vector<std::pair<CellId::binary_type, unsigned int>> weighed;
-    archive >> weighted >> saved_cell_weight >> saved_point_weight >> weighed;
+    std::uint64_t csv_length;
+    archive >> csv_length >> weighted >> saved_cell_weight >>
+      saved_point_weight >> weighed;
+    open_file(csv_length);
     if (!weighted)
       return;
     // Each rank weighed the cells it owned then; the even split gives it

@@ -68,8 +68,14 @@ namespace mpm
         x[d] = grid.node_position(node)[d];
       return x;
     };
+    // Only the pairs this rank kept up in the last step: a rank whose cells
+    // emptied still holds the pairs it last saw, which the rank that goes
+    // on visiting them may have let go.
     grid_changing = grid.before_change.connect([this, coordinates]() {
-      contact_by_position = contact.by_position(coordinates);
+      contact_by_position = contact.by_position(
+        coordinates, [this](const unsigned int node, const unsigned int wall) {
+          return pairs_in_step.count({node, wall}) > 0;
+        });
     });
     grid_changed = grid.changed.connect([this, &grid, coordinates]() {
       // The nodes are vertices of the grid, so their coordinates match to
@@ -130,8 +136,10 @@ namespace mpm
         const TrilinosWrappers::MPI::Vector touching =
           contact_gaps(state, false);
         const bool first_step = !contact.has_started();
+        pairs_in_step.clear();
         for_each_contact_node(
           [&](const ContactPair &pair) {
+            pairs_in_step.insert({pair.node, pair.wall});
             if (touching(pair.dof0 + pair.wall) == 0.)
               contact.let_go(pair.node, pair.wall);
             else if (first_step)

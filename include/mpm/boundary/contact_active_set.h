@@ -209,18 +209,20 @@ namespace mpm
     }
 
     /**
-     * The held pairs in a form that outlives the node numbers: per pair
-     * the node's coordinates (3 entries, from `position`), the wall, 1 if
-     * it slides, and the direction (3 entries); and a last entry 1 if a
-     * step was solved. The nodes of a grid that is repartitioned are
-     * numbered anew, and pass to other ranks.
+     * The held pairs for which `keep(node, wall)` is true, in a form that
+     * outlives the node numbers: per pair the node's coordinates (3
+     * entries, from `position`), the wall, 1 if it slides, and the
+     * direction (3 entries); and a last entry 1 if a step was solved. The
+     * nodes of a grid that is repartitioned are numbered anew, and pass to
+     * other ranks.
      */
-    template <class Position>
+    template <class Position, class Keep>
     std::vector<double>
-    by_position(const Position &position) const
+    by_position(const Position &position, const Keep &keep) const
     {
       std::vector<double> pairs;
       for (const auto &pair : held)
+        if (keep(pair.first, pair.second))
         {
           const std::array<double, 3> x = position(pair.first);
           pairs.insert(pairs.end(), x.begin(), x.end());

@@ -20,23 +20,28 @@ namespace mpm
    * and the in-plane pair has a closed form; that is several times cheaper
    * than deal.II's iterative Jacobi rotations, which were the largest
    * single cost of an explicit Mohr-Coulomb step. Other tensors go to
-   * Jacobi.
+   * deal.II's `general` method.
    */
   inline std::array<std::pair<double, Tensor<1, 3>>, 3>
-  principal_axes(const SymmetricTensor<2, 3> &t)
+  principal_axes(const SymmetricTensor<2, 3> &     t,
+                 const SymmetricTensorEigenvectorMethod general =
+                   SymmetricTensorEigenvectorMethod::jacobi)
   {
     if (t[0][2] != 0. || t[1][2] != 0.)
-      return eigenvectors(t, SymmetricTensorEigenvectorMethod::jacobi);
+      return eigenvectors(t, general);
 
     const double a = t[0][0], c = t[0][1], d = t[1][1];
     const double mean   = 0.5 * (a + d);
     const double radius = std::sqrt(0.25 * (a - d) * (a - d) + c * c);
     // The smaller one from the determinant where the difference of the
     // two would cancel (the stretches of b are positive).
-    const double larger  = mean + radius;
-    const double smaller = (mean > 0. && larger > 0.) ?
-                             (a * d - c * c) / larger :
-                             mean - radius;
+    const double larger = mean + radius;
+    // Within round-off of each other the determinant form may come out an
+    // ulp above the larger one.
+    const double smaller =
+      std::min(larger,
+               (mean > 0. && larger > 0.) ? (a * d - c * c) / larger :
+                                            mean - radius);
     Tensor<1, 3> first, second;
     if (radius == 0.)
       {

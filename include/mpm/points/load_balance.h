@@ -9,6 +9,7 @@
 
 #include <boost/serialization/split_member.hpp>
 
+#include <cstdint>
 #include <fstream>
 #include <functional>
 #include <string>
@@ -43,8 +44,8 @@ namespace mpm
 
     /**
      * Parse the `Load balance` subsection (the handler is at top level).
-     * `continued`: the run continues from a checkpoint, so the file is
-     * appended to.
+     * `continued`: the run continues from a checkpoint, whose load() opens
+     * the file.
      */
     LoadBalance(ParameterHandler &         prm,
                 Grid<dim> &                grid,
@@ -58,13 +59,15 @@ namespace mpm
     check(const double time, const unsigned int step);
 
     /**
-     * For Checkpoint, before the points: the weights of the last
-     * repartition (the weight entries then, and the number of points in
-     * each cell this rank weighed). A continued run starts on p4est's even
-     * split of the cells; load() splits them by those weights again, which
-     * gives the same partition, so each rank owns the cells whose points it
-     * saved and the continued run repeats the uninterrupted one to the last
-     * bit. It does so even when the continued run no longer balances.
+     * For Checkpoint, before the points: the length of load_balance.csv and
+     * the weights of the last repartition (the weight entries then, and the
+     * number of points in each cell this rank weighed). A continued run
+     * starts on p4est's even split of the cells; load() splits them by
+     * those weights again, which gives the same partition (and, as the
+     * grid rebuilds its cells at each repartition, the same local order of
+     * cells and nodes), so each rank owns the cells whose points it saved
+     * and the continued run repeats the uninterrupted one to the last bit.
+     * It does so even when the continued run no longer balances.
      */
     template <class Archive>
     void
@@ -105,6 +108,13 @@ namespace mpm
     void
     repartition_by_points();
 
+    /**
+     * Open load_balance.csv on rank 0, if there are checks: anew, or
+     * continued at `continue_at` bytes (a run continued from a checkpoint).
+     */
+    void
+    open_file(const std::uint64_t continue_at);
+
     /** Points and weight of this rank's cells. */
     std::pair<double, double>
     local_load() const;
@@ -125,7 +135,9 @@ namespace mpm
     unsigned int last_point_weight        = 0;
     std::vector<std::pair<CellId::binary_type, unsigned int>> last_points_in;
 
-    std::ofstream file;
+    std::string filename;
+    // mutable: save() asks it for its length, and tellp() is not const.
+    mutable std::ofstream file;
   };
 } // namespace mpm
 

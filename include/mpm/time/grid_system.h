@@ -14,6 +14,8 @@
 #include <mpm/time/implicit_system.h>
 #include <mpm/time/reached_nodes.h>
 
+#include <set>
+
 
 namespace mpm
 {
@@ -86,19 +88,20 @@ namespace mpm
     }
 
     /**
-     * The contact nodes that hold the material. They are numbered on this
-     * rank, so a checkpoint is continued on as many ranks.
+     * The contact nodes that hold the material, and those this rank visited
+     * in the last step (a repartition carries those). They are numbered on
+     * this rank, so a checkpoint is continued on as many ranks.
      */
     void
     save(boost::archive::binary_oarchive &archive) const override
     {
-      archive << contact;
+      archive << contact << pairs_in_step;
     }
 
     void
     load(boost::archive::binary_iarchive &archive) override
     {
-      archive >> contact;
+      archive >> contact >> pairs_in_step;
     }
 
   private:
@@ -239,6 +242,8 @@ namespace mpm
      * ranks: the contact set is carried by the nodes' coordinates.
      */
     std::vector<double>                contact_by_position;
+    /** The (node, wall) pairs this rank visits in the current step. */
+    std::set<std::pair<unsigned int, unsigned int>> pairs_in_step;
     boost::signals2::scoped_connection grid_changing, grid_changed;
   };
 } // namespace mpm
