@@ -8,6 +8,32 @@
 
 namespace mpm
 {
+  namespace
+  {
+    /**
+     * c += k A (x) B on the 6 x 6 independent entries. deal.II's
+     * outer_product of two symmetric tensors goes through its index
+     * accessors entry by entry, and was an eighth of an implicit
+     * Mohr-Coulomb run.
+     */
+    void
+    add_outer_product(SymmetricTensor<4, 3> &      c,
+                      const double                 k,
+                      const SymmetricTensor<2, 3> &A,
+                      const SymmetricTensor<2, 3> &B)
+    {
+      constexpr unsigned int n = SymmetricTensor<2, 3>::n_independent_components;
+      for (unsigned int I = 0; I < n; ++I)
+        {
+          const double kA = k * A.access_raw_entry(I);
+          for (unsigned int J = 0; J < n; ++J)
+            c.access_raw_entry(n * I + J) += kA * B.access_raw_entry(J);
+        }
+    }
+  } // namespace
+
+
+
   HenckyPlasticity::HenckyPlasticity(const ParameterHandler &prm,
                                      const std::string &     name,
                                      const std::string &     section_path)
@@ -156,7 +182,7 @@ namespace mpm
     SymmetricTensor<4, 3> c;
     for (unsigned int a = 0; a < 3; ++a)
       for (unsigned int b = 0; b < 3; ++b)
-        c += (D[a][b] - (a == b ? 2. * tau[a] : 0.)) * outer_product(m[a], m[b]);
+        add_outer_product(c, D[a][b] - (a == b ? 2. * tau[a] : 0.), m[a], m[b]);
     for (unsigned int a = 0; a < 3; ++a)
       for (unsigned int b = a + 1; b < 3; ++b)
         {
@@ -169,7 +195,7 @@ namespace mpm
               2. * (tau[a] * beta[b] - tau[b] * beta[a]) / (beta[a] - beta[b]);
           const SymmetricTensor<2, 3> s = symmetrize(
             outer_product(step.directions[a], step.directions[b]));
-          c += 2. * g * outer_product(s, s);
+          add_outer_product(c, 2. * g, s, s);
         }
     return c / step.J;
   }
