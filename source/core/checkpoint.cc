@@ -54,7 +54,8 @@ namespace mpm
     : communicator(communicator)
     , checkpoint_directory(output_directory + "/checkpoint")
     , scene(scene_entries(prm))
-    , entries_that_may_change(entries_that_may_change)
+    , entries_that_may_change(
+        with_checkpoint_entries(entries_that_may_change))
   {
     prm.enter_subsection("Checkpoint");
     interval_seconds = 60. * prm.get_double("Wall time interval");
@@ -312,11 +313,18 @@ namespace mpm
 
 
 
+  std::vector<std::string>
+  Checkpoint::with_checkpoint_entries(std::vector<std::string> entries)
+  {
+    entries.push_back("Checkpoint/");
+    return entries;
+  }
+
+
+
   bool
   Checkpoint::may_change(const std::string &entry) const
   {
-    if (entry.rfind("Checkpoint/", 0) == 0)
-      return true;
     for (const std::string &allowed : entries_that_may_change)
       if (allowed == entry ||
           (allowed.back() == '/' && entry.rfind(allowed, 0) == 0))
@@ -329,13 +337,18 @@ namespace mpm
   std::string
   Checkpoint::may_change_list() const
   {
+    // The Checkpoint entries come last: 'a, b, the X entries and the
+    // Checkpoint entries'.
     std::string list;
     for (const auto &entry : entries_that_may_change)
-      list += (entry.back() == '/' ?
-                 "the " + entry.substr(0, entry.size() - 1) + " entries" :
-                 entry) +
-              (&entry == &entries_that_may_change.back() ? " " : ", ");
-    return list + "and the Checkpoint entries";
+      {
+        if (&entry != &entries_that_may_change.front())
+          list += &entry == &entries_that_may_change.back() ? " and " : ", ";
+        list += entry.back() == '/' ?
+                  "the " + entry.substr(0, entry.size() - 1) + " entries" :
+                  entry;
+      }
+    return list;
   }
 
 

@@ -37,9 +37,9 @@ namespace mpm
 
     /**
      * `entries_that_may_change` ('Section/entry', or 'Section/' for a whole
-     * subsection), besides the Checkpoint
-     * entries, may differ between the run that wrote a checkpoint and the
-     * one that continues it; any other entry of the scene must not.
+     * subsection), besides the Checkpoint entries, may differ between the
+     * run that wrote a checkpoint and the one that continues it; any other
+     * entry of the scene must not.
      */
     Checkpoint(ParameterHandler &              prm,
                const std::string &             output_directory,
@@ -110,6 +110,10 @@ namespace mpm
     /** Every entry of the scene as 'Section/entry' -> value. */
     static std::map<std::string, std::string>
     scene_entries(const ParameterHandler &prm);
+
+    /** `entries` and, last, the whole Checkpoint subsection. */
+    static std::vector<std::string>
+    with_checkpoint_entries(std::vector<std::string> entries);
 
     bool
     may_change(const std::string &entry) const;
