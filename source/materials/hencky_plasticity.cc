@@ -46,6 +46,7 @@ namespace mpm
                       "elastic_b_minus_I_xy",
                       "elastic_b_minus_I_xz",
                       "elastic_b_minus_I_yz"};
+    principal_compliance = invert(principal_stiffness());
   }
 
 
@@ -118,7 +119,7 @@ namespace mpm
     if (step.result.plastic)
       {
         const Tensor<1, 3> eps_elastic =
-          invert(principal_stiffness()) * step.result.tau;
+          principal_compliance * step.result.tau;
         b_new = 0;
         for (unsigned int a = 0; a < 3; ++a)
           b_new += std::exp(2. * eps_elastic[a]) * m[a];
@@ -152,7 +153,7 @@ namespace mpm
                 << name() << "'; choose K0 nearer 1, or start from rest.";
         throw InputError(message.str());
       }
-    const Tensor<1, 3>    eps = invert(principal_stiffness()) * tau;
+    const Tensor<1, 3>    eps = principal_compliance * tau;
     SymmetricTensor<2, 3> b_minus_I;
     for (unsigned int a = 0; a < 3; ++a)
       b_minus_I += (std::exp(2. * eps[a]) - 1.) *

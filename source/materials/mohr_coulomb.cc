@@ -308,7 +308,7 @@ namespace mpm
                                std::to_string(sigma_trial[2]) + ")."));
         sigma               = Tensor<1, 3>({apex, apex, apex});
         tangent             = Tensor<2, 3>();
-        plastic_strain_step = invert(D) * (sigma_trial - sigma);
+        plastic_strain_step = principal_compliance * (sigma_trial - sigma);
       }
 
     for (unsigned int i = 0; i < 3; ++i)

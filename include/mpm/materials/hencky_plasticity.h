@@ -99,6 +99,9 @@ namespace mpm
     Tensor<2, 3>
     principal_stiffness() const;
 
+    /** Its inverse, kept: an elastic strain per plastic return. */
+    Tensor<2, 3> principal_compliance;
+
   private:
     /** The trial state of a step and its return. */
     struct Step
