@@ -121,6 +121,39 @@ namespace mpm
 
 
 
+  template <int dim>
+  const LinearAlgebra::distributed::Vector<double> &
+  GridNodes<dim>::output_vector() const
+  {
+    values.update_ghost_values();
+    // No point reaches a hanging vertex, so the projection leaves it
+    // empty; no step reads what is written here.
+    for (const auto &cell : grid.get_triangulation().active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          const auto &geometry = grid.cell_geometry(cell->active_cell_index());
+          if (geometry.n_hanging == 0)
+            continue;
+          for (const auto &entry : grid.hanging_vertices(geometry))
+            std::fill_n(values.get_values() + NodalLayout::n_components *
+                                                geometry.nodes[entry.vertex],
+                        NodalLayout::n_components,
+                        0.);
+          for (const auto &entry : grid.hanging_vertices(geometry))
+            {
+              double *hanging = values.get_values() +
+                                NodalLayout::n_components *
+                                  geometry.nodes[entry.vertex];
+              const double *master = values_of(entry.master);
+              for (unsigned int c = 0; c < NodalLayout::n_components; ++c)
+                hanging[c] += entry.weight * master[c];
+            }
+        }
+    return values;
+  }
+
+
+
   template class GridNodes<2>;
   template class GridNodes<3>;
 } // namespace mpm

@@ -306,6 +306,50 @@ namespace mpm
 
   template <int dim>
   void
+  GridBasis<dim>::condense_hanging_vertices(const CellGeometry &cell,
+                                            Support<dim> &      support) const
+  {
+    std::array<double, n_vertices>         value;
+    std::array<Tensor<1, dim>, n_vertices> gradient;
+    std::array<bool, n_vertices>           hangs = {};
+    const auto hanging = grid.hanging_vertices(cell);
+    for (const auto &entry : hanging)
+      hangs[entry.vertex] = true;
+    unsigned int n = 0;
+    for (unsigned int v = 0; v < n_vertices; ++v)
+      {
+        value[v]    = support.N[v];
+        gradient[v] = support.grad_N[v];
+        if (!hangs[v])
+          {
+            support.nodes[n]  = support.nodes[v];
+            support.N[n]      = value[v];
+            support.grad_N[n] = gradient[v];
+            ++n;
+          }
+      }
+    for (const auto &entry : hanging)
+      {
+        unsigned int i = 0;
+        while (i < n && support.nodes[i] != entry.master)
+          ++i;
+        if (i == n)
+          {
+            support.resize(++n);
+            support.nodes[i]  = entry.master;
+            support.N[i]      = 0.;
+            support.grad_N[i] = Tensor<1, dim>();
+          }
+        support.N[i] += entry.weight * value[entry.vertex];
+        support.grad_N[i] += entry.weight * gradient[entry.vertex];
+      }
+    support.n_nodes = n;
+  }
+
+
+
+  template <int dim>
+  void
   GridBasis<dim>::cell_integrals(const unsigned int active_cell_index,
                                  Support<dim> &     integrals) const
   {
@@ -333,6 +377,8 @@ namespace mpm
             for (unsigned int v = 0; v < n_vertices; ++v)
               integrals.N[v] += weight * values[v];
           }
+        if (cell.n_hanging > 0)
+          condense_hanging_vertices(cell, integrals);
         return;
       }
 

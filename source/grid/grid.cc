@@ -221,6 +221,44 @@ namespace mpm
 
 
   template <int dim>
+  bool
+  Grid<dim>::adapt(
+    const std::function<
+      int(const typename Triangulation<dim>::active_cell_iterator &)>
+      &decide)
+  {
+    bool flagged = false;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          cell->clear_refine_flag();
+          cell->clear_coarsen_flag();
+          const int decision = decide(cell);
+          if (decision > 0)
+            cell->set_refine_flag();
+          else if (decision < 0 &&
+                   cell->level() > static_cast<int>(n_refinements))
+            cell->set_coarsen_flag();
+        }
+    // Drops the coarsening of families not all flagged, and whatever the
+    // 2:1 balance forbids.
+    triangulation.prepare_coarsening_and_refinement();
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned() &&
+          (cell->refine_flag_set() || cell->coarsen_flag_set()))
+        flagged = true;
+    if (!Utilities::MPI::logical_or(flagged, get_communicator()))
+      return false;
+
+    before_change();
+    triangulation.execute_coarsening_and_refinement();
+    update();
+    return true;
+  }
+
+
+
+  template <int dim>
   void
   Grid<dim>::update()
   {
@@ -237,6 +275,7 @@ namespace mpm
     hanging_nodes.close();
 
     cells.assign(triangulation.n_active_cells(), CellGeometry());
+    hanging_entries.clear();
     node_positions.assign(n_nodes(), Point<dim>());
     bool   cartesian = true;
     double min_edge  = std::numeric_limits<double>::max();
@@ -257,6 +296,15 @@ namespace mpm
             data.vertices[v] = cell->vertex(v);
             node_positions[data.nodes[v]] = cell->vertex(v);
           }
+        // The masters of a hanging vertex are vertices of the coarser
+        // neighbour, an owned or ghost cell: their ids are known here.
+        data.first_hanging = hanging_entries.size();
+        for (unsigned int v = 0; v < n_vertices; ++v)
+          if (const auto *masters = hanging_nodes.get_constraint_entries(
+                cell->vertex_dof_index(v, 0)))
+            for (const auto &[master, weight] : *masters)
+              hanging_entries.push_back({v, node_of_dof(master), weight});
+        data.n_hanging = hanging_entries.size() - data.first_hanging;
 
         // Axis-aligned box: vertex v = vertex 0 + sum over the set bits d of
         // v of h_d e_d.

@@ -96,14 +96,11 @@ namespace mpm
     /**
      * The values as a vector of the FESystem of 1 + 2 dim Q1 components on
      * output_dof_handler(), for the grid output (DataOut). Ghost values are
-     * brought up to date first.
+     * brought up to date first, and the vertices that hang on a coarser
+     * cell's face get the values that the nodes of that face give them.
      */
     const LinearAlgebra::distributed::Vector<double> &
-    output_vector() const
-    {
-      values.update_ghost_values();
-      return values;
-    }
+    output_vector() const;
 
     const DoFHandler<dim> &
     output_dof_handler() const

@@ -57,6 +57,11 @@ namespace mpm
    *   makes the face node interpolate (N = 1 on the face), so walls hold
    *   nodes as they do with Q1.
    *
+   * On an adaptive grid the linear functions are those of the conforming
+   * grid: a vertex that hangs on a coarser neighbour's face passes its
+   * value to that face's nodes (Grid::hanging_vertices), so a point's
+   * support may reach nodes of the coarser cell.
+   *
    * The smooth kinds reach the nodes of the cells around the point's cell
    * (at most 3 per direction) and need a grid of equal axis-aligned cells
    * filling a box (NodeLattice).
@@ -184,7 +189,20 @@ namespace mpm
           for (unsigned int v = 0; v < n_vertices; ++v)
             support.grad_N[v] = inverse_transpose * grad_ref[v];
         }
+      if (cell.n_hanging > 0)
+        condense_hanging_vertices(cell, support);
     }
+
+    /**
+     * On a cell with hanging vertices (an adaptive grid), give each hanging
+     * vertex's value and gradient to its masters: the support is then that
+     * of the continuous Q1 functions of the refined grid, a partition of
+     * unity that reproduces linear fields, and no point reaches a hanging
+     * node. `support` holds the cell's vertices in order on entry.
+     */
+    void
+    condense_hanging_vertices(const typename Grid<dim>::CellGeometry &cell,
+                              Support<dim> &support) const;
 
     /**
      * GIMP: the half-width of the point's domain in cells per direction,

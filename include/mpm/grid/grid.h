@@ -1,6 +1,7 @@
 #ifndef mpm_grid_grid_h
 #define mpm_grid_grid_h
 
+#include <deal.II/base/array_view.h>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/partitioner.h>
 #include <deal.II/base/point.h>
@@ -91,6 +92,28 @@ namespace mpm
      */
     void
     repartition(const CellWeight &weight);
+
+    /**
+     * Refine and coarsen the locally owned cells as `decide` says (+1
+     * refine, -1 coarsen, 0 keep; never coarser than the grid of the
+     * scene, base_level()), balanced 2:1 by p4est, and split evenly among
+     * the ranks. If the flags change nothing, the grid is left alone and
+     * false returned; otherwise fire `before_change`, change the cells,
+     * number the nodes, fire `changed` and return true (p4est may still
+     * refuse a coarsening that the flags allow, for its 2:1 balance; the
+     * cells are then split anew all the same).
+     */
+    bool
+    adapt(const std::function<int(
+            const typename Triangulation<dim>::active_cell_iterator &)>
+            &decide);
+
+    /** The level of the cells of the scene's grid (Global refinements). */
+    unsigned int
+    base_level() const
+    {
+      return n_refinements;
+    }
 
     /**
      * Move every vertex x to transformation(x); then number the nodes and
@@ -271,7 +294,29 @@ namespace mpm
       /** 1 / edge length per direction; set on axis-aligned boxes only. */
       Tensor<1, dim> inverse_h;
       bool           is_cartesian = false;
+      /** The cell's entries in hanging_vertices(): first and how many. */
+      unsigned int first_hanging = 0;
+      unsigned int n_hanging     = 0;
     };
+
+    /**
+     * A vertex of a cell that hangs on the face (or edge) of a coarser
+     * neighbour: its value is the weighted sum of those of its master
+     * nodes, one entry per master.
+     */
+    struct HangingVertex
+    {
+      unsigned int vertex;
+      unsigned int master;
+      double       weight;
+    };
+
+    /** The hanging vertices of a locally owned cell (none on a uniform grid). */
+    ArrayView<const HangingVertex>
+    hanging_vertices(const CellGeometry &cell) const
+    {
+      return {hanging_entries.data() + cell.first_hanging, cell.n_hanging};
+    }
 
     const CellGeometry &
     cell_geometry(const unsigned int active_cell_index) const
@@ -301,6 +346,8 @@ namespace mpm
     std::vector<Point<dim>> node_positions;
     /** Indexed by active cell index; only locally owned entries are set. */
     std::vector<CellGeometry> cells;
+    /** The hanging vertices of all owned cells, cell after cell. */
+    std::vector<HangingVertex> hanging_entries;
     bool                      axisymmetric        = false;
     bool                      plane_stress        = false;
     /** The plate's initial thickness in plane stress, 1 otherwise. */
