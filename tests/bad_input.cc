@@ -334,6 +334,12 @@ main(int argc, char **argv)
   run_case("load balancing with no weight on cells or points",
            with({"Load balance/Cell weight=0",
                  "Load balance/Point weight=0"}));
+  run_case("an adaptive grid with the quasi-static scheme",
+           with({"Adaptive grid/Refinement levels=1",
+                 "Time stepping/Scheme=quasi-static"}));
+  run_case("an adaptive grid with smooth shape functions",
+           with({"Adaptive grid/Refinement levels=1",
+                 "Grid/Shape functions=uGIMP"}));
   {
     // A run that leaves a checkpoint (at its end), to continue wrongly.
     const std::vector<std::string> checkpointed = {

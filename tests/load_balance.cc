@@ -25,35 +25,6 @@ namespace
   const std::vector<std::string> coarse_column = {
     "Grid/Arguments=40, 13 : 0, 0 : 8, 2.6 : true"};
 
-  /**
-   * The largest difference between two time series over all columns and
-   * rows, relative to the largest magnitude of its column; infinity when
-   * the rows or columns differ.
-   */
-  double
-  largest_difference(mpm_tests::Columns &a, mpm_tests::Columns &b)
-  {
-    double largest = 0.;
-    for (auto &[name, column] : a)
-      {
-        const std::vector<double> &other = b[name];
-        if (column.size() != other.size() || column.size() < 3)
-          return std::numeric_limits<double>::infinity();
-        double scale = 0., gap = 0.;
-        for (unsigned int n = 0; n < column.size(); ++n)
-          {
-            scale = std::max(scale, std::abs(column[n]));
-            gap   = std::max(gap, std::abs(column[n] - other[n]));
-          }
-        // NaN compares false: a NaN makes the gap infinite.
-        if (!(gap <= scale * 1e300))
-          return std::numeric_limits<double>::infinity();
-        if (scale > 0.)
-          largest = std::max(largest, gap / scale);
-      }
-    return largest;
-  }
-
   /** `settings` with a check every `interval` steps that repartitions. */
   std::vector<std::string>
   balanced_every(std::vector<std::string> settings,
@@ -114,7 +85,7 @@ namespace
                      screen.find("load balance at step 0: weight "
                                  "imbalance 1.") !=
                        std::string::npos);
-    const double gap = largest_difference(even, moved);
+    const double gap = mpm_tests::largest_difference(even, moved);
     mpm_tests::check("the time series equals the unbalanced run's to 1e-9 "
                      "of each column's largest value",
                      gap < 1e-9);
@@ -186,7 +157,7 @@ namespace
                      record["step"] == record_whole["step"]);
     mpm_tests::check("the time series equals the run made in one go to the "
                      "last digit",
-                     largest_difference(whole, parts) == 0.);
+                     mpm_tests::largest_difference(whole, parts) == 0.);
   }
 } // namespace
 

@@ -177,6 +177,37 @@ namespace mpm_tests
   }
 
   /**
+   * The largest difference between two time series over all columns and
+   * rows, relative to the largest magnitude of its column; infinity when
+   * the rows or columns differ.
+   */
+  inline double
+  largest_difference(Columns &a, Columns &b)
+  {
+    double largest = 0.;
+    for (auto &[name, column] : a)
+      {
+        const std::vector<double> &other = b[name];
+        if (column.size() != other.size() || column.size() < 3)
+          return std::numeric_limits<double>::infinity();
+        double scale = 0., gap = 0.;
+        for (unsigned int n = 0; n < column.size(); ++n)
+          {
+            scale = std::max(scale, std::abs(column[n]));
+            gap   = std::max(gap, std::abs(column[n] - other[n]));
+          }
+        // NaN compares false: a NaN makes the gap infinite.
+        if (!(gap <= scale * 1e300))
+          return std::numeric_limits<double>::infinity();
+        if (scale > 0.)
+          largest = std::max(largest, gap / scale);
+      }
+    return largest;
+  }
+
+
+
+  /**
    * The tangent of a non-associated Mohr-Coulomb column (prm/
    * column_collapse.prm on 0.2 m cells, Newmark, 0.2 s: plastic from the
    * third step) against central differences of the residual, through

@@ -15,7 +15,7 @@ namespace mpm
   namespace
   {
     // Bumped whenever what the classes save changes.
-    constexpr unsigned int format_version = 10;
+    constexpr unsigned int format_version = 11;
   } // namespace
 
 

@@ -57,6 +57,7 @@ namespace mpm
     TimeSeries<dim>::declare_parameters(prm);
     Checkpoint::declare_parameters(prm);
     LoadBalance<dim>::declare_parameters(prm);
+    GridAdaptation<dim>::declare_parameters(prm);
 
     prm.enter_subsection("Materials");
     for (const auto &name : names.materials)
@@ -234,6 +235,38 @@ namespace mpm
       scheme_name != "explicit",
       scheme_name != "explicit" || loads->is_active());
     points->parse_outflow(prm);
+
+    // A grid that follows the material is refined around the bodies before
+    // they are seeded, so that the points fill the finest cells; the
+    // inflows' regions stay refined for the whole run.
+    const auto near_body = [](const Body<dim> &body, const auto &cell) {
+      return body.region().signed_distance(cell->center()) <=
+             0.5 * cell->diameter();
+    };
+    adaptation = std::make_unique<GridAdaptation<dim>>(
+      prm, *grid, *points, [this, near_body](const auto &cell) {
+        return std::any_of(bodies.begin(),
+                           bodies.end(),
+                           [&](const Body<dim> &body) {
+                             return body.is_inflow() && near_body(body, cell);
+                           });
+      },
+      pcout);
+    if (adaptation->enabled() &&
+        (scheme_name != "explicit" || method != "MPM" ||
+         shape_functions != GridShapeFunctions::linear))
+      throw InputError("Adaptive grid/Refinement levels > 0 needs Time "
+                       "stepping/Scheme = explicit, Method = MPM and "
+                       "Grid/Shape functions = linear; the implicit schemes, "
+                       "the meshfree methods and the smooth shape functions "
+                       "take a fixed grid.");
+    adaptation->refine_around([this, near_body](const auto &cell) {
+      return std::any_of(bodies.begin(),
+                         bodies.end(),
+                         [&](const Body<dim> &body) {
+                           return near_body(body, cell);
+                         });
+    });
     seeder = std::make_unique<PointSeeder<dim>>(*grid);
     seeder->check_bodies(bodies, materials);
     seeder->release_due(bodies, materials, *points, 0., 0.);
@@ -438,9 +471,10 @@ namespace mpm
   Simulator<dim>::serialize(Archive &archive, const unsigned int)
   {
     archive &time &step &dt &next_output &next_time_series;
-    // The partition before the points: they load into the cells their
-    // rank owned.
-    archive &*load_balance &*points &*seeder &*vtu_output &*time_series;
+    // The cells and their partition before the points: they load into the
+    // cells their rank owned.
+    archive &*adaptation &*load_balance &*points &*seeder &*vtu_output
+      &*time_series;
     if constexpr (Archive::is_saving::value)
       scheme->save(archive);
     else
@@ -520,6 +554,11 @@ namespace mpm
         // released now: a run continued from a checkpoint written at this
         // step makes the same check.
         {
+          TimerOutput::Scope t(timer, "adaptive grid");
+          if (adaptation->check(step))
+            load_balance->grid_adapted();
+        }
+        {
           TimerOutput::Scope t(timer, "load balance");
           load_balance->check(time, step);
         }
@@ -586,6 +625,10 @@ namespace mpm
           << " particle-steps per second per rank, " << wall
           << " s wall time, peak memory " << peak_memory_mb
           << " MB (all ranks)" << std::endl;
+    if (adaptation->enabled())
+      pcout << "mpm: the grid adapted " << adaptation->n_adaptations()
+            << " times; " << grid->get_triangulation().n_global_active_cells()
+            << " cells at the end" << std::endl;
     scheme->print_statistics();
     timer.print_wall_time_statistics(communicator);
   }

@@ -145,6 +145,20 @@ namespace mpm
 
 
   template <int dim>
+  void
+  LoadBalance<dim>::grid_adapted()
+  {
+    // A checkpoint restores the last weights only if they made the
+    // partition in force.
+    if (repartitions())
+      repartition_by_points();
+    else
+      repartitioned_by_weights = false;
+  }
+
+
+
+  template <int dim>
   bool
   LoadBalance<dim>::repartitions() const
   {

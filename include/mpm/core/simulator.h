@@ -21,6 +21,7 @@
 #include <mpm/materials/material.h>
 #include <mpm/output/time_series.h>
 #include <mpm/output/vtu_output.h>
+#include <mpm/points/grid_adaptation.h>
 #include <mpm/points/load_balance.h>
 #include <mpm/points/material_points.h>
 #include <mpm/time/time_scheme.h>
@@ -145,6 +146,7 @@ namespace mpm
     std::unique_ptr<TimeSeries<dim>>          time_series;
     std::unique_ptr<Checkpoint>               checkpoint;
     std::unique_ptr<LoadBalance<dim>>         load_balance;
+    std::unique_ptr<GridAdaptation<dim>>      adaptation;
     bool                                      restarted = false;
 
     Tensor<1, dim> gravity;

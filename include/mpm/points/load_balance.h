@@ -59,6 +59,13 @@ namespace mpm
     check(const double time, const unsigned int step);
 
     /**
+     * The grid's cells changed (an adaptive grid), and p4est split them
+     * evenly: repartition by the points now, if this class repartitions.
+     */
+    void
+    grid_adapted();
+
+    /**
      * For Checkpoint, before the points: the length of load_balance.csv and
      * the weights of the last repartition (the weight entries then, and the
      * number of points in each cell this rank weighed). A continued run

@@ -1,0 +1,443 @@
+// A grid that is refined in part: the hanging vertices on the faces
+// between coarse and fine cells pass their shape functions to the nodes of
+// the coarse face, in 2D and 3D, on one or two ranks.
+// - the shape functions at points in every cell (fine, coarse, and fine
+//   cells with hanging vertices) are a partition of unity that reproduces
+//   linear fields (values and gradients), reach no hanging node, and are
+//   continuous across a coarse-fine face;
+// - a block in free fall across refinement and coarsening mid-run (with
+//   hanging nodes around it) falls exactly: v = -g t_n at every point and
+//   MUSL's y_n = y_0 - g t_n (t_n + dt) / 2 for the centre of mass; a
+//   projection to the refined grid conserves mass and momentum;
+// - a uniform stress in a box filled with material (slip walls) whose
+//   grid is refined in one half stays uniform, at rest: the internal
+//   forces at the nodes of the coarse-fine interface cancel;
+// - a granular column collapse (prm/granular_collapse.prm, 0.06 s) on a
+//   grid that follows the material gives the time series of the uniform
+//   grid of its finest cells to round-off (the Margin keeps every cell
+//   with material and its neighbours at the finest level, so the same
+//   nodes carry the same sums), with fewer cells; and a run continued
+//   from a checkpoint written after the grid adapted repeats the run made
+//   in one go to the last digit.
+
+#include <deal.II/base/mpi.h>
+
+#include <mpm/assembly/grid_transfer.h>
+#include <mpm/boundary/dirichlet_conditions.h>
+#include <mpm/grid/grid.h>
+#include <mpm/time/explicit_integrator.h>
+
+#include <cmath>
+#include <map>
+#include <sstream>
+
+#include "small_scene.h"
+#include "tests.h"
+
+using namespace dealii;
+using namespace mpm;
+
+namespace
+{
+  /** Refine the owned cells whose centre lies below x = `x` once. */
+  template <int dim>
+  void
+  refine_left_of(Grid<dim> &grid, const double x)
+  {
+    grid.adapt([x](const auto &cell) { return cell->center()[0] < x ? 1 : 0; });
+  }
+
+
+
+  /** A point of the reference cell, from a seed, away from its faces. */
+  template <int dim>
+  Point<dim>
+  sample_point(const unsigned int k)
+  {
+    Point<dim> xi;
+    for (unsigned int d = 0; d < dim; ++d)
+      xi[d] = 0.05 + 0.9 * std::fmod(0.6180339887 * (k + 1) * (d + 2), 1.);
+    return xi;
+  }
+} // namespace
+
+
+
+template <int dim>
+void
+check_shape_functions()
+{
+  const MPI_Comm   comm = MPI_COMM_WORLD;
+  ParameterHandler prm;
+  mpm_tests::parse_small_scene<dim>(
+    prm,
+    "subsection Grid\n set Generator = subdivided_hyper_cube\n"
+    " set Arguments = 4 : 0 : 1 : true\nend\n");
+  Grid<dim> grid(prm, comm);
+  grid.create();
+  refine_left_of(grid, 0.5);
+  refine_left_of(grid, 0.25);
+  const GridBasis<dim> basis(grid);
+  const auto &         hanging = grid.hanging_node_constraints();
+  const auto &         partitioner = *grid.node_partitioner();
+
+  double       unity = 0., reproduction = 0., gradient = 0., continuity = 0.;
+  bool         reaches_hanging = false;
+  unsigned int n_hanging_cells = 0, n_faces = 0;
+  Support<dim> support, other;
+  for (const auto &cell : grid.get_triangulation().active_cell_iterators())
+    {
+      if (!cell->is_locally_owned())
+        continue;
+      const unsigned int index = cell->active_cell_index();
+      n_hanging_cells += grid.cell_geometry(index).n_hanging > 0;
+      for (unsigned int k = 0; k < 5; ++k)
+        {
+          const Point<dim> xi = sample_point<dim>(k + index);
+          const Point<dim> x =
+            grid.get_mapping().transform_unit_to_real_cell(cell, xi);
+          basis.evaluate(index, xi, {}, support);
+          double         sum = 0.;
+          Tensor<1, dim> sum_gradient, position;
+          Tensor<2, dim> position_gradient;
+          for (unsigned int i = 0; i < support.n_nodes; ++i)
+            {
+              const Point<dim> &node = grid.node_position(support.nodes[i]);
+              sum += support.N[i];
+              sum_gradient += support.grad_N[i];
+              position += support.N[i] * node;
+              position_gradient += outer_product(node, support.grad_N[i]);
+              reaches_hanging =
+                reaches_hanging ||
+                hanging.is_constrained(
+                  partitioner.local_to_global(support.nodes[i]));
+            }
+          unity        = std::max(unity, std::abs(sum - 1.));
+          reproduction = std::max(reproduction, (position - x).norm());
+          gradient     = std::max(gradient,
+                              (sum_gradient.norm() +
+                               (position_gradient -
+                                unit_symmetric_tensor<dim>())
+                                 .norm()));
+        }
+
+      // On each face towards a coarser owned neighbour, the functions seen
+      // from both sides agree.
+      for (const unsigned int f : cell->face_indices())
+        {
+          if (cell->at_boundary(f) || !cell->neighbor_is_coarser(f) ||
+              !cell->neighbor(f)->is_locally_owned())
+            continue;
+          ++n_faces;
+          const auto coarse = cell->neighbor(f);
+          for (unsigned int k = 0; k < 3; ++k)
+            {
+              Point<dim> xi = sample_point<dim>(k);
+              xi[f / 2]     = f % 2;
+              const Point<dim> x =
+                grid.get_mapping().transform_unit_to_real_cell(cell, xi);
+              basis.evaluate(index, xi, {}, support);
+              basis.evaluate(
+                coarse->active_cell_index(),
+                grid.get_mapping().transform_real_to_unit_cell(coarse, x),
+                {},
+                other);
+              std::map<unsigned int, double> difference;
+              for (unsigned int i = 0; i < support.n_nodes; ++i)
+                difference[support.nodes[i]] += support.N[i];
+              for (unsigned int i = 0; i < other.n_nodes; ++i)
+                difference[other.nodes[i]] -= other.N[i];
+              for (const auto &[node, d] : difference)
+                continuity = std::max(continuity, std::abs(d));
+            }
+        }
+    }
+  mpm_tests::check("some owned cells have hanging vertices",
+                   Utilities::MPI::sum(n_hanging_cells, comm) > 0);
+  mpm_tests::check("faces to a coarser owned cell were compared",
+                   Utilities::MPI::sum(n_faces, comm) > 0);
+  mpm_tests::check("sum N = 1 to 1e-14",
+                   Utilities::MPI::max(unity, comm) < 1e-14);
+  mpm_tests::check("sum N x_i = x to 1e-14",
+                   Utilities::MPI::max(reproduction, comm) < 1e-14);
+  mpm_tests::check("sum grad N = 0 and sum x_i grad N = I to 1e-13",
+                   Utilities::MPI::max(gradient, comm) < 1e-13);
+  mpm_tests::check("no support reaches a hanging node",
+                   !Utilities::MPI::logical_or(reaches_hanging, comm));
+  mpm_tests::check("N is continuous across coarse-fine faces to 1e-14",
+                   Utilities::MPI::max(continuity, comm) < 1e-14);
+}
+
+
+
+template <int dim>
+void
+check_free_fall()
+{
+  const MPI_Comm comm = MPI_COMM_WORLD;
+  const double   g = 9.81, dt = 1e-3;
+  ParameterHandler prm;
+  mpm_tests::parse_small_scene<dim>(
+    prm,
+    std::string("subsection Grid\n set Generator = subdivided_hyper_cube\n"
+                " set Arguments = 4 : 0 : 1 : true\nend\n"
+                "subsection body\n set Shape = box\n") +
+      (dim == 2 ? " set Lower corner = 0.3,0.5\n set Upper corner = 0.7,0.9\n" :
+                  " set Lower corner = 0.3,0.3,0.5\n"
+                  " set Upper corner = 0.7,0.7,0.9\n") +
+      // Not on the vertices of the refined cells, where a point's
+      // gradients would reach nodes that get no mass.
+      " set Point placement = Gauss\n set Material = steel\nend\n");
+  Grid<dim> grid(prm, comm);
+  grid.create();
+  DirichletConditions<dim> dirichlet(prm, grid);
+  dirichlet.setup();
+  GridNodes<dim> nodes(grid);
+  nodes.setup();
+  GridBasis<dim> basis(grid);
+  std::vector<std::unique_ptr<Material>> materials;
+  MaterialPoints<dim>                    points(grid, {}, false, false);
+  mpm_tests::seed_small_scene(prm, grid, materials, points);
+  Tensor<1, dim> gravity;
+  gravity[dim - 1] = -g;
+  GridTransfer<dim> transfer(points, basis, nodes, {&dirichlet}, gravity);
+  TimerOutput       timer(comm, deallog.get_console(), TimerOutput::never,
+                    TimerOutput::wall_times);
+  ExplicitIntegrator<dim> integrator(
+    transfer, materials, ExplicitIntegrator<dim>::Scheme::MUSL, 0., false,
+    grid, timer);
+
+  using Layout = PointLayout<dim>;
+  const auto centre_height = [&]() {
+    double sum = 0.;
+    for (const auto &particle : points.handler())
+      sum += particle.get_location()[dim - 1];
+    return Utilities::MPI::sum(sum, comm) / points.n_global_points();
+  };
+  const double                y0       = centre_height();
+  const types::particle_index n_points = points.n_global_points();
+  double velocity_error = 0., height_error = 0.;
+  bool   hanging_around_points = false;
+  for (unsigned int n = 1; n <= 20; ++n)
+    {
+      // The cells with points and the cells next to them, twice; then back.
+      if (n == 6 || n == 8)
+        grid.adapt([&](const auto &cell) {
+          return points.handler().n_particles_in_cell(cell) > 0 ? 1 : 0;
+        });
+      if (n == 14 || n == 16)
+        grid.adapt([](const auto &) { return -1; });
+
+      for (const auto &cell : grid.get_triangulation().active_cell_iterators())
+        if (cell->is_locally_owned() &&
+            points.handler().n_particles_in_cell(cell) > 0 &&
+            grid.cell_geometry(cell->active_cell_index()).n_hanging > 0)
+          hanging_around_points = true;
+      if (n == 10)
+        {
+          double         point_mass = 0.;
+          Tensor<1, dim> point_momentum;
+          for (const auto &particle : points.handler())
+            {
+              const ArrayView<const double> p = particle.get_properties();
+              point_mass += p[Layout::mass];
+              point_momentum += p[Layout::mass] * Layout::get_velocity(p);
+            }
+          point_mass     = Utilities::MPI::sum(point_mass, comm);
+          point_momentum = Utilities::MPI::sum(point_momentum, comm);
+          transfer.project_mass_momentum(false);
+          const auto [grid_mass, grid_momentum] =
+            mpm_tests::grid_mass_and_momentum(grid, nodes);
+          mpm_tests::check("a projection with hanging nodes conserves mass "
+                           "to 1e-13",
+                           std::abs(grid_mass - point_mass) <
+                             1e-13 * point_mass);
+          mpm_tests::check("and momentum to 1e-13",
+                           (grid_momentum - point_momentum).norm() <
+                             1e-13 * point_momentum.norm());
+        }
+      integrator.step(dt);
+      points.sort();
+      const double t = n * dt;
+      for (const auto &particle : points.handler())
+        velocity_error = std::max(
+          velocity_error,
+          std::abs(particle.get_properties()[Layout::velocity + dim - 1] +
+                   g * t));
+      height_error =
+        std::max(height_error,
+                 std::abs(centre_height() - (y0 - g * t * (t + dt) / 2.)));
+    }
+  mpm_tests::check("points lay in cells with hanging vertices",
+                   Utilities::MPI::logical_or(hanging_around_points, comm));
+  mpm_tests::check("no point lost", points.n_global_points() == n_points);
+  mpm_tests::check("the grid is back to its 4^dim cells",
+                   grid.get_triangulation().n_global_active_cells() ==
+                     Utilities::fixed_power<dim>(4u));
+  mpm_tests::check("free fall: v = -g t_n to 1e-12",
+                   Utilities::MPI::max(velocity_error, comm) < 1e-12);
+  mpm_tests::check("and y_n = y_0 - g t_n (t_n + dt) / 2 to 1e-12",
+                   height_error < 1e-12);
+}
+
+
+
+template <int dim>
+void
+check_uniform_stress()
+{
+  const MPI_Comm comm = MPI_COMM_WORLD;
+  ParameterHandler prm;
+  mpm_tests::parse_small_scene<dim>(
+    prm,
+    std::string("subsection Grid\n set Generator = subdivided_hyper_cube\n"
+                " set Arguments = 4 : 0 : 1 : true\nend\n"
+                "subsection Boundary conditions\n set Slip boundaries = "
+                "left, right, bottom, top") +
+      (dim == 3 ? ", back, front" : "") +
+      "\nend\nsubsection body\n set Shape = box\n" +
+      (dim == 2 ? " set Lower corner = 0,0\n set Upper corner = 1,1\n" :
+                  " set Lower corner = 0,0,0\n set Upper corner = 1,1,1\n") +
+      " set Material = steel\nend\n");
+  Grid<dim> grid(prm, comm);
+  grid.create();
+  refine_left_of(grid, 0.5);
+  DirichletConditions<dim> dirichlet(prm, grid);
+  dirichlet.setup();
+  GridNodes<dim> nodes(grid);
+  nodes.setup();
+  GridBasis<dim> basis(grid);
+  std::vector<std::unique_ptr<Material>> materials;
+  MaterialPoints<dim>                    points(grid, {}, false, false);
+  mpm_tests::seed_small_scene(prm, grid, materials, points);
+
+  using Layout = PointLayout<dim>;
+  SymmetricTensor<2, 3> stress;
+  stress[0][0] = -1e6;
+  stress[1][1] = -2e6;
+  stress[2][2] = -3e6;
+  for (auto &particle : points.handler())
+    Layout::set_stress(particle.get_properties(), stress);
+  GridTransfer<dim> transfer(points, basis, nodes, {&dirichlet},
+                             Tensor<1, dim>());
+  TimerOutput       timer(comm, deallog.get_console(), TimerOutput::never,
+                    TimerOutput::wall_times);
+  ExplicitIntegrator<dim> integrator(
+    transfer, materials, ExplicitIntegrator<dim>::Scheme::MUSL, 0., false,
+    grid, timer);
+  // One step of an unbalanced force of the stress on a cell would give a
+  // point sigma dt / (rho h) = 2e6 1e-6 / (1000 0.25) = 8e-3 m/s.
+  double speed = 0., stress_change = 0.;
+  for (unsigned int n = 0; n < 10; ++n)
+    {
+      integrator.step(1e-6);
+      points.sort();
+      for (const auto &particle : points.handler())
+        {
+          const ArrayView<const double> p = particle.get_properties();
+          speed = std::max(speed, Layout::get_velocity(p).norm());
+          stress_change = std::max(
+            stress_change, (Layout::get_stress(p) - stress).norm() / 3e6);
+        }
+    }
+  mpm_tests::check("a uniform stress across the coarse-fine interface "
+                   "stays at rest: |v| < 1e-13 m/s",
+                   Utilities::MPI::max(speed, comm) < 1e-13);
+  mpm_tests::check("and uniform, to 1e-13 relative",
+                   Utilities::MPI::max(stress_change, comm) < 1e-13);
+}
+
+
+
+void
+check_column_collapse()
+{
+  deallog << "--- granular column collapse" << std::endl;
+  const std::string              scene = "../prm/granular_collapse.prm";
+  // Fixed steps, so that the first part ends on a step of the whole run.
+  const std::vector<std::string> common = {"Time stepping/End time=0.06",
+                                           "Time stepping/Time step=5e-5",
+                                           "Output/Interval=0"};
+  std::vector<std::string> uniform = common, adaptive = common;
+  uniform.push_back("Grid/Arguments=160, 24 : 0, 0 : 0.8, 0.12 : true");
+  adaptive.push_back("Grid/Arguments=40, 6 : 0, 0 : 0.8, 0.12 : true");
+  adaptive.push_back("Adaptive grid/Refinement levels=2");
+  adaptive.push_back("Checkpoint/Wall time interval=1e9");
+  // On two ranks the load balance repartitions at the start only; after
+  // that each adaptation must repartition by the points, as the
+  // checkpoint restores the last weights.
+  adaptive.push_back("Load balance/Check interval=100000");
+  adaptive.push_back("Load balance/Imbalance tolerance=1");
+  std::string screen;
+  auto fixed = mpm_tests::run_scene(scene, "output-uniform", uniform);
+  auto following =
+    mpm_tests::run_scene(scene, "output-adaptive", adaptive, &screen);
+
+  std::vector<std::string> first = adaptive;
+  first.push_back("Time stepping/End time=0.03");
+  std::string first_screen;
+  mpm_tests::run_scene(scene, "output-parts", first, &first_screen);
+  std::vector<std::string> arguments = {"--restart",
+                                        "--set",
+                                        "Output/Directory=output-parts",
+                                        "--set",
+                                        "Output/Write ParaView output=false"};
+  for (const std::string &setting : adaptive)
+    {
+      arguments.push_back("--set");
+      arguments.push_back(setting);
+    }
+  arguments.push_back(mpm_tests::source_file(scene));
+  const int code = mpm::run_command_line(arguments);
+  MPI_Barrier(MPI_COMM_WORLD);
+  if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) != 0)
+    return;
+
+  const auto number_after = [](const std::string &text,
+                               const std::string &before) {
+    const auto at = text.find(before);
+    if (at == std::string::npos)
+      return -1.;
+    std::istringstream in(text.substr(at + before.size()));
+    double             n = -1.;
+    in >> n;
+    return n;
+  };
+  const double start_cells =
+                 number_after(screen, "mpm: adaptive grid, "),
+               adaptations_before_stop =
+                 number_after(first_screen, "mpm: the grid adapted ");
+  deallog << "adaptive grid: " << start_cells << " cells at the start, "
+          << "against 3840 uniform" << std::endl;
+  mpm_tests::check("the grid that follows the column has fewer than 2/3 of "
+                   "the uniform grid's cells",
+                   start_cells > 0. && start_cells < 2560.);
+  mpm_tests::check("the grid adapted before the checkpoint",
+                   adaptations_before_stop >= 1.);
+  mpm_tests::check("the time series equals the uniform grid's to 1e-9 of "
+                   "each column's largest value",
+                   mpm_tests::largest_difference(fixed, following) < 1e-9);
+  auto parts = mpm_tests::read_csv("output-parts/time_series.csv");
+  mpm_tests::check("the continued run exits with 0 and repeats the run made "
+                   "in one go to the last digit",
+                   code == 0 &&
+                     mpm_tests::largest_difference(following, parts) == 0.);
+}
+
+
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  mpm_tests::initlog();
+  deallog << "dim = 2" << std::endl;
+  check_shape_functions<2>();
+  check_free_fall<2>();
+  check_uniform_stress<2>();
+  deallog << "dim = 3" << std::endl;
+  check_shape_functions<3>();
+  check_free_fall<3>();
+  check_uniform_stress<3>();
+  check_column_collapse();
+}
