@@ -177,35 +177,15 @@ check_free_fall()
   const MPI_Comm comm = MPI_COMM_WORLD;
   const double   g = 9.81, dt = 1e-3;
   ParameterHandler prm;
+  // Not on the vertices of the refined cells, where a point's gradients
+  // would reach nodes that get no mass.
   mpm_tests::parse_small_scene<dim>(
-    prm,
-    std::string("subsection Grid\n set Generator = subdivided_hyper_cube\n"
-                " set Arguments = 4 : 0 : 1 : true\nend\n"
-                "subsection body\n set Shape = box\n") +
-      (dim == 2 ? " set Lower corner = 0.3,0.5\n set Upper corner = 0.7,0.9\n" :
-                  " set Lower corner = 0.3,0.3,0.5\n"
-                  " set Upper corner = 0.7,0.7,0.9\n") +
-      // Not on the vertices of the refined cells, where a point's
-      // gradients would reach nodes that get no mass.
-      " set Point placement = Gauss\n set Material = steel\nend\n");
-  Grid<dim> grid(prm, comm);
-  grid.create();
-  DirichletConditions<dim> dirichlet(prm, grid);
-  dirichlet.setup();
-  GridNodes<dim> nodes(grid);
-  nodes.setup();
-  GridBasis<dim> basis(grid);
-  std::vector<std::unique_ptr<Material>> materials;
-  MaterialPoints<dim>                    points(grid, {}, false, false);
-  mpm_tests::seed_small_scene(prm, grid, materials, points);
+    prm, mpm_tests::block_in_unit_box<dim>("Gauss"));
   Tensor<1, dim> gravity;
   gravity[dim - 1] = -g;
-  GridTransfer<dim> transfer(points, basis, nodes, {&dirichlet}, gravity);
-  TimerOutput       timer(comm, deallog.get_console(), TimerOutput::never,
-                    TimerOutput::wall_times);
-  ExplicitIntegrator<dim> integrator(
-    transfer, materials, ExplicitIntegrator<dim>::Scheme::MUSL, 0., false,
-    grid, timer);
+  mpm_tests::SmallExplicitRun<dim> run(prm, gravity);
+  auto &[grid, dirichlet, nodes, basis, materials, points, transfer, timer,
+         integrator] = run;
 
   using Layout = PointLayout<dim>;
   const auto centre_height = [&]() {
@@ -299,38 +279,23 @@ check_uniform_stress()
       (dim == 2 ? " set Lower corner = 0,0\n set Upper corner = 1,1\n" :
                   " set Lower corner = 0,0,0\n set Upper corner = 1,1,1\n") +
       " set Material = steel\nend\n");
-  Grid<dim> grid(prm, comm);
-  grid.create();
-  refine_left_of(grid, 0.5);
-  DirichletConditions<dim> dirichlet(prm, grid);
-  dirichlet.setup();
-  GridNodes<dim> nodes(grid);
-  nodes.setup();
-  GridBasis<dim> basis(grid);
-  std::vector<std::unique_ptr<Material>> materials;
-  MaterialPoints<dim>                    points(grid, {}, false, false);
-  mpm_tests::seed_small_scene(prm, grid, materials, points);
-
-  using Layout = PointLayout<dim>;
+  mpm_tests::SmallExplicitRun<dim> run(prm, Tensor<1, dim>(), [](auto &grid) {
+    refine_left_of(grid, 0.5);
+  });
+  MaterialPoints<dim> &points = run.points;
+  using Layout                = PointLayout<dim>;
   SymmetricTensor<2, 3> stress;
   stress[0][0] = -1e6;
   stress[1][1] = -2e6;
   stress[2][2] = -3e6;
   for (auto &particle : points.handler())
     Layout::set_stress(particle.get_properties(), stress);
-  GridTransfer<dim> transfer(points, basis, nodes, {&dirichlet},
-                             Tensor<1, dim>());
-  TimerOutput       timer(comm, deallog.get_console(), TimerOutput::never,
-                    TimerOutput::wall_times);
-  ExplicitIntegrator<dim> integrator(
-    transfer, materials, ExplicitIntegrator<dim>::Scheme::MUSL, 0., false,
-    grid, timer);
   // One step of an unbalanced force of the stress on a cell would give a
   // point sigma dt / (rho h) = 2e6 1e-6 / (1000 0.25) = 8e-3 m/s.
   double speed = 0., stress_change = 0.;
   for (unsigned int n = 0; n < 10; ++n)
     {
-      integrator.step(1e-6);
+      run.integrator.step(1e-6);
       points.sort();
       for (const auto &particle : points.handler())
         {
@@ -377,19 +342,9 @@ check_column_collapse()
   first.push_back("Time stepping/End time=0.03");
   std::string first_screen;
   mpm_tests::run_scene(scene, "output-parts", first, &first_screen);
-  std::vector<std::string> arguments = {"--restart",
-                                        "--set",
-                                        "Output/Directory=output-parts",
-                                        "--set",
-                                        "Output/Write ParaView output=false"};
-  for (const std::string &setting : adaptive)
-    {
-      arguments.push_back("--set");
-      arguments.push_back(setting);
-    }
-  arguments.push_back(mpm_tests::source_file(scene));
-  const int code = mpm::run_command_line(arguments);
-  MPI_Barrier(MPI_COMM_WORLD);
+  int  code  = -1;
+  auto parts = mpm_tests::run_scene(
+    scene, "output-parts", adaptive, nullptr, &code, true);
   if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) != 0)
     return;
 
@@ -417,7 +372,6 @@ check_column_collapse()
   mpm_tests::check("the time series equals the uniform grid's to 1e-9 of "
                    "each column's largest value",
                    mpm_tests::largest_difference(fixed, following) < 1e-9);
-  auto parts = mpm_tests::read_csv("output-parts/time_series.csv");
   mpm_tests::check("the continued run exits with 0 and repeats the run made "
                    "in one go to the last digit",
                    code == 0 &&

@@ -36,36 +36,13 @@ test()
   const double   g = 9.81, dt = 1e-3;
 
   ParameterHandler prm;
-  mpm_tests::parse_small_scene<dim>(
-    prm,
-    std::string("subsection Grid\n set Generator = subdivided_hyper_cube\n"
-                " set Arguments = 4 : 0 : 1 : true\nend\n"
-                "subsection body\n set Shape = box\n") +
-    (dim == 2 ? " set Lower corner = 0.3,0.5\n set Upper corner = 0.7,0.9\n" :
-                " set Lower corner = 0.3,0.3,0.5\n"
-                " set Upper corner = 0.7,0.7,0.9\n") +
-    " set Material = steel\nend\n");
-
-  Grid<dim> grid(prm, comm);
-  grid.create();
-  DirichletConditions<dim> dirichlet(prm, grid);
-  dirichlet.setup();
-  GridNodes<dim> nodes(grid);
-  nodes.setup();
-  GridBasis<dim> basis(grid);
-
-  std::vector<std::unique_ptr<Material>> materials;
-  MaterialPoints<dim>                    points(grid, {}, false, false);
-  mpm_tests::seed_small_scene(prm, grid, materials, points);
-
+  mpm_tests::parse_small_scene<dim>(prm,
+                                    mpm_tests::block_in_unit_box<dim>());
   Tensor<1, dim> gravity;
   gravity[dim - 1] = -g;
-  GridTransfer<dim> transfer(points, basis, nodes, {&dirichlet}, gravity);
-  TimerOutput       timer(MPI_COMM_WORLD, deallog.get_console(),
-                    TimerOutput::never, TimerOutput::wall_times);
-  ExplicitIntegrator<dim> integrator(
-    transfer, materials, ExplicitIntegrator<dim>::Scheme::MUSL, 0., false,
-    grid, timer);
+  mpm_tests::SmallExplicitRun<dim> run(prm, gravity);
+  auto &[grid, dirichlet, nodes, basis, materials, points, transfer, timer,
+         integrator] = run;
 
   using Layout = PointLayout<dim>;
   auto centre_height = [&]() {

@@ -122,25 +122,13 @@ namespace
     auto whole = mpm_tests::run_scene(scene, name + "-whole", straight);
     mpm_tests::run_scene(scene, name + "-parts", first);
 
-    std::vector<std::string> arguments = {
-      "--restart",
-      "--set",
-      "Output/Directory=" + name + "-parts",
-      "--set",
-      "Output/Write ParaView output=false"};
     std::vector<std::string> second = balanced;
     second.push_back(end_time.str());
-    for (const std::string &s : second)
-      {
-        arguments.push_back("--set");
-        arguments.push_back(s);
-      }
-    arguments.push_back(mpm_tests::source_file(scene));
-    const int code = mpm::run_command_line(arguments);
-    MPI_Barrier(MPI_COMM_WORLD);
+    int  code  = -1;
+    auto parts = mpm_tests::run_scene(
+      scene, name + "-parts", second, nullptr, &code, true);
     if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) != 0)
       return;
-    auto parts  = mpm_tests::read_csv(name + "-parts/time_series.csv");
     auto record = mpm_tests::read_csv(name + "-parts/load_balance.csv");
     auto record_whole =
       mpm_tests::read_csv(name + "-whole/load_balance.csv");

@@ -133,19 +133,23 @@ namespace mpm_tests
    * `directory` (no ParaView files) and the given 'Section/entry=value'
    * settings; log the exit code (and give it in `exit_code`) and return
    * the time series. With `screen`, what the run prints (on rank 0) goes
-   * there instead.
+   * there instead. With `restart`, the run continues from the checkpoint
+   * in `directory`.
    */
   inline Columns
   run_scene(const std::string &             scene,
             const std::string &             directory,
             const std::vector<std::string> &settings  = {},
             std::string *                   screen    = nullptr,
-            int *                           exit_code = nullptr)
+            int *                           exit_code = nullptr,
+            const bool                      restart   = false)
   {
     std::vector<std::string> arguments = {"--set",
                                           "Output/Directory=" + directory,
                                           "--set",
                                           "Output/Write ParaView output=false"};
+    if (restart)
+      arguments.insert(arguments.begin(), "--restart");
     for (const auto &s : settings)
       {
         arguments.push_back("--set");
