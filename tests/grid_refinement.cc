@@ -32,8 +32,7 @@ void
 test()
 {
   deallog << "dim = " << dim << std::endl;
-  const MPI_Comm comm = MPI_COMM_WORLD;
-  const double   g = 9.81, dt = 1e-3;
+  const double   g = 9.81;
 
   ParameterHandler prm;
   mpm_tests::parse_small_scene<dim>(prm,
@@ -44,36 +43,14 @@ test()
   auto &[grid, dirichlet, nodes, basis, materials, points, transfer, timer,
          integrator] = run;
 
-  using Layout = PointLayout<dim>;
-  auto centre_height = [&]() {
-    double sum = 0.;
-    for (const auto &particle : points.handler())
-      sum += particle.get_location()[dim - 1];
-    return Utilities::MPI::sum(sum, comm) / points.n_global_points();
-  };
-  const double                y0       = centre_height();
   const types::particle_index n_points = points.n_global_points();
-  const unsigned int          n_cells  = grid.get_triangulation()
-                                     .n_global_active_cells();
-  double velocity_error = 0., height_error = 0.;
-  for (unsigned int n = 1; n <= 20; ++n)
-    {
+  const unsigned int          n_cells =
+    grid.get_triangulation().n_global_active_cells();
+  const auto [velocity_error, height_error] =
+    mpm_tests::free_fall_errors(run, g, [&](const unsigned int n) {
       if (n == 11)
         grid.refine_globally(1);
-      integrator.step(dt);
-      points.sort();
-      const double t = n * dt;
-      for (const auto &particle : points.handler())
-        velocity_error =
-          std::max(velocity_error,
-                   std::abs(particle.get_properties()[Layout::velocity + dim -
-                                                      1] +
-                            g * t));
-      height_error =
-        std::max(height_error,
-                 std::abs(centre_height() - (y0 - g * t * (t + dt) / 2.)));
-    }
-  velocity_error = Utilities::MPI::max(velocity_error, comm);
+    });
 
   mpm_tests::check("no point lost across the refinement",
                    points.n_global_points() == n_points);
@@ -84,26 +61,7 @@ test()
                    velocity_error < 1e-12);
   mpm_tests::check("and y_n = y_0 - g t_n (t_n + dt) / 2 to 1e-12",
                    height_error < 1e-12);
-
-  // One projection to the refined grid.
-  double         point_mass = 0.;
-  Tensor<1, dim> point_momentum;
-  for (const auto &particle : points.handler())
-    {
-      const ArrayView<const double> p = particle.get_properties();
-      point_mass += p[Layout::mass];
-      point_momentum += p[Layout::mass] * Layout::get_velocity(p);
-    }
-  point_mass     = Utilities::MPI::sum(point_mass, comm);
-  point_momentum = Utilities::MPI::sum(point_momentum, comm);
-  transfer.project_mass_momentum(false);
-  const auto [grid_mass, grid_momentum] =
-    mpm_tests::grid_mass_and_momentum(grid, nodes);
-  mpm_tests::check("projection to the refined grid conserves mass to 1e-13",
-                   std::abs(grid_mass - point_mass) < 1e-13 * point_mass);
-  mpm_tests::check("and momentum to 1e-13",
-                   (grid_momentum - point_momentum).norm() <
-                     1e-13 * point_momentum.norm());
+  mpm_tests::check_projection_conserves(run, "projection to the refined grid");
   deallog << "points: " << points.n_global_points() << ", cells "
           << n_cells << " -> "
           << grid.get_triangulation().n_global_active_cells() << std::endl;

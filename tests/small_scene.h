@@ -24,6 +24,8 @@
 #include <string>
 #include <vector>
 
+#include "tests.h"
+
 namespace mpm_tests
 {
   /**
@@ -167,6 +169,78 @@ namespace mpm_tests
     dealii::TimerOutput                         timer;
     mpm::ExplicitIntegrator<dim>                integrator;
   };
+
+  /**
+   * Steps n = 1 ... 20 of `run`'s block in free fall under gravity g with
+   * dt = 1e-3, `before_step(n)` called before each: the largest error over
+   * the steps and points of MUSL's exact discrete solution, v = -g t_n for
+   * every point and y_0 - g t_n (t_n + dt) / 2 for the centre of mass.
+   */
+  template <int dim>
+  std::pair<double, double>
+  free_fall_errors(SmallExplicitRun<dim> &                   run,
+                   const double                              g,
+                   const std::function<void(unsigned int)> &before_step)
+  {
+    using Layout        = mpm::PointLayout<dim>;
+    const double   dt   = 1e-3;
+    const MPI_Comm comm = MPI_COMM_WORLD;
+    const auto     centre_height = [&]() {
+      double sum = 0.;
+      for (const auto &particle : run.points.handler())
+        sum += particle.get_location()[dim - 1];
+      return dealii::Utilities::MPI::sum(sum, comm) /
+             run.points.n_global_points();
+    };
+    const double y0             = centre_height();
+    double       velocity_error = 0., height_error = 0.;
+    for (unsigned int n = 1; n <= 20; ++n)
+      {
+        before_step(n);
+        run.integrator.step(dt);
+        run.points.sort();
+        const double t = n * dt;
+        for (const auto &particle : run.points.handler())
+          velocity_error = std::max(
+            velocity_error,
+            std::abs(particle.get_properties()[Layout::velocity + dim - 1] +
+                     g * t));
+        height_error =
+          std::max(height_error,
+                   std::abs(centre_height() - (y0 - g * t * (t + dt) / 2.)));
+      }
+    return {dealii::Utilities::MPI::max(velocity_error, comm), height_error};
+  }
+
+  /**
+   * Project `run`'s points to the grid once and check, as `what` conserves
+   * mass and momentum to 1e-13.
+   */
+  template <int dim>
+  void
+  check_projection_conserves(SmallExplicitRun<dim> &run,
+                             const std::string &    what)
+  {
+    using Layout                   = mpm::PointLayout<dim>;
+    const MPI_Comm         comm    = MPI_COMM_WORLD;
+    double                 mass    = 0.;
+    dealii::Tensor<1, dim> momentum;
+    for (const auto &particle : run.points.handler())
+      {
+        const dealii::ArrayView<const double> p = particle.get_properties();
+        mass += p[Layout::mass];
+        momentum += p[Layout::mass] * Layout::get_velocity(p);
+      }
+    mass     = dealii::Utilities::MPI::sum(mass, comm);
+    momentum = dealii::Utilities::MPI::sum(momentum, comm);
+    run.transfer.project_mass_momentum(false);
+    const auto [grid_mass, grid_momentum] =
+      grid_mass_and_momentum(run.grid, run.nodes);
+    check(what + " conserves mass to 1e-13",
+          std::abs(grid_mass - mass) < 1e-13 * mass);
+    check("and momentum to 1e-13",
+          (grid_momentum - momentum).norm() < 1e-13 * momentum.norm());
+  }
 } // namespace mpm_tests
 
 #endif
