@@ -334,9 +334,10 @@ main(int argc, char **argv)
   run_case("load balancing with no weight on cells or points",
            with({"Load balance/Cell weight=0",
                  "Load balance/Point weight=0"}));
-  run_case("an adaptive grid with the quasi-static scheme",
+  run_case("an adaptive grid with the meshfree method",
            with({"Adaptive grid/Refinement levels=1",
-                 "Time stepping/Scheme=quasi-static"}));
+                 "Time stepping/Scheme=quasi-static",
+                 "Method=GMM-MLS"}));
   run_case("an adaptive grid with smooth shape functions",
            with({"Adaptive grid/Refinement levels=1",
                  "Grid/Shape functions=uGIMP"}));

@@ -253,13 +253,11 @@ namespace mpm
       },
       pcout);
     if (adaptation->enabled() &&
-        (scheme_name != "explicit" || method != "MPM" ||
-         shape_functions != GridShapeFunctions::linear))
-      throw InputError("Adaptive grid/Refinement levels > 0 needs Time "
-                       "stepping/Scheme = explicit, Method = MPM and "
-                       "Grid/Shape functions = linear; the implicit schemes, "
-                       "the meshfree methods and the smooth shape functions "
-                       "take a fixed grid.");
+        (method != "MPM" || shape_functions != GridShapeFunctions::linear))
+      throw InputError("Adaptive grid/Refinement levels > 0 needs Method = "
+                       "MPM and Grid/Shape functions = linear; the meshfree "
+                       "methods and the smooth shape functions take a fixed "
+                       "grid.");
     adaptation->refine_around([this, near_body](const auto &cell) {
       return std::any_of(bodies.begin(),
                          bodies.end(),

@@ -334,6 +334,7 @@ namespace mpm
 
     const MPI_Comm comm = triangulation.get_communicator();
     all_cells_cartesian = Utilities::MPI::min(cartesian ? 1 : 0, comm) == 1;
+    any_hanging = Utilities::MPI::logical_or(!hanging_entries.empty(), comm);
     min_cell_size       = Utilities::MPI::min(min_edge, comm);
 
     // Keep the mapping object when its kind stays: the particle handler

@@ -23,13 +23,18 @@ namespace mpm
       "Times the cells near the material are refined beyond the grid of "
       "the scene (Generator and Global refinements), which is the "
       "coarsest the grid gets; 0: the grid stays as the scene gives it. "
-      "Explicit MPM with linear shape functions only. The time step "
-      "follows the finest cells.");
+      "MPM with linear shape functions, every scheme. The explicit time "
+      "step follows the finest cells.");
     prm.declare_entry(
-      "Margin", "2", Patterns::Integer(1, 20),
+      "Margin", "2", Patterns::Integer(0, 20),
       "Rings of cells at the finest level kept around every cell that "
       "holds material; a refinement reaches out to twice as many, and "
-      "cells beyond three times as many coarsen again.");
+      "cells beyond three times as many coarsen again. With 1 or more the "
+      "material's cells have no hanging vertices, and a run gives the "
+      "results of the uniform grid of the finest cells; 0 refines the "
+      "cells that hold material only, whose outer vertices may then hang "
+      "on coarser cells (and the grid changes whenever material enters a "
+      "new cell).");
     prm.declare_entry(
       "Check interval", "10", Patterns::Integer(0),
       "Steps between two checks of the margin (and of cells to coarsen); "

@@ -34,7 +34,8 @@ namespace mpm
       "have crossed cells (after Beuth et al., who use Gauss points in full "
       "cells); cells on the material's surface keep point volumes. MPM "
       "only: the meshfree methods always weigh point volumes, as Iaconeta "
-      "et al. do.");
+      "et al. do, and so do the smooth shape functions and an adaptive "
+      "grid once it has hanging vertices.");
     prm.leave_subsection();
     ReachedNodes<dim>::declare_parameters(prm);
   }
@@ -107,13 +108,13 @@ namespace mpm
     // around, of every cell with a node a point reaches (the nodes of
     // those cells that no point reaches are held at zero).
     collect_cell_groups(state);
-    if (basis.reaches_neighbours())
+    if (supports_leave_cell())
       reached_nodes.find(state.groups, group_cells);
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
           bool carries = this->points.handler().n_particles_in_cell(cell) > 0;
-          if (basis.reaches_neighbours())
+          if (supports_leave_cell())
             for (const unsigned int v : cell->vertex_indices())
               carries =
                 carries || reached_nodes.contains(
@@ -312,8 +313,9 @@ namespace mpm
     const typename DoFHandler<dim>::active_cell_iterator &cell) const
   {
     // Smooth shape functions reach beyond the cell: the cell is not their
-    // domain of integration.
-    if (!scale_full_cells || basis.reaches_neighbours())
+    // domain of integration; nor is it on an adapted grid, where a face
+    // neighbour may be a refined one.
+    if (!scale_full_cells || supports_leave_cell())
       return 1.;
     // Neighbours (owned or ghost) that hold points carry FE_Q.
     for (const unsigned int f : cell->face_indices())
@@ -357,7 +359,6 @@ namespace mpm
                               const unsigned int wall) {
       return slides_found.insert({node, wall}).second;
     };
-    DoFTools::make_hanging_node_constraints(dof_handler, state.constraints);
     for_each_constrained_vertex([&](const auto &               cell,
                                     const unsigned int         v,
                                     const unsigned int         node,
@@ -400,9 +401,9 @@ namespace mpm
                                    state);
 
     // Nodes of cells with unknowns that no point reaches carry nothing:
-    // held at zero.
+    // held at zero (so are hanging vertices, which the supports condense).
     state.unreached_node_dofs.clear();
-    if (basis.reaches_neighbours())
+    if (supports_leave_cell())
       {
         // A node is met once per cell around it.
         std::vector<bool> met(grid.n_nodes(), false);

@@ -311,6 +311,13 @@ namespace mpm
       double       weight;
     };
 
+    /** Whether any cell, on any rank, has a hanging vertex. */
+    bool
+    has_hanging_nodes() const
+    {
+      return any_hanging;
+    }
+
     /** The hanging vertices of a locally owned cell (none on a uniform grid). */
     ArrayView<const HangingVertex>
     hanging_vertices(const CellGeometry &cell) const
@@ -348,6 +355,7 @@ namespace mpm
     std::vector<CellGeometry> cells;
     /** The hanging vertices of all owned cells, cell after cell. */
     std::vector<HangingVertex> hanging_entries;
+    bool                       any_hanging = false;
     bool                      axisymmetric        = false;
     bool                      plane_stress        = false;
     /** The plate's initial thickness in plane stress, 1 otherwise. */

@@ -225,7 +225,21 @@ namespace mpm
     bool
     with_ghost_nodes() const
     {
-      return basis.reaches_neighbours();
+      return supports_leave_cell();
+    }
+
+    /**
+     * Whether a point's support may reach nodes that are not vertices of
+     * its cell: smooth shape functions, or the linear ones on a grid with
+     * hanging vertices (condensed onto the coarser face's nodes). The
+     * unknowns then live on every cell with a reached node, and the nodes
+     * of those cells that no point reaches (the hanging ones among them)
+     * are held at zero.
+     */
+    bool
+    supports_leave_cell() const
+    {
+      return basis.reaches_neighbours() || grid.has_hanging_nodes();
     }
     /** Per node id: the first of its dim dofs in this step. */
     std::vector<types::global_dof_index> node_dof;
