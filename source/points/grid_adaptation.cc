@@ -31,7 +31,9 @@ namespace mpm
       "holds material; a refinement reaches out to twice as many, and "
       "cells beyond three times as many coarsen again. With 1 or more the "
       "material's cells have no hanging vertices, and a run gives the "
-      "results of the uniform grid of the finest cells; 0 refines the "
+      "results of the uniform grid of the finest cells (implicit runs: "
+      "with Newton/Integration = material points, which they use on an "
+      "adapted grid); 0 refines the "
       "cells that hold material only, whose outer vertices may then hang "
       "on coarser cells (and the grid changes whenever material enters a "
       "new cell).");

@@ -72,11 +72,14 @@ namespace mpm
     // Only the pairs this rank kept up in the last step: a rank whose cells
     // emptied still holds the pairs it last saw, which the rank that goes
     // on visiting them may have let go.
+    // After a first change the set holds only such pairs, renumbered.
     grid_changing = grid.before_change.connect([this, coordinates]() {
       contact_by_position = contact.by_position(
         coordinates, [this](const unsigned int node, const unsigned int wall) {
-          return pairs_in_step.count({node, wall}) > 0;
+          return !pairs_in_step_current ||
+                 pairs_in_step.count({node, wall}) > 0;
         });
+      pairs_in_step_current = false;
     });
     grid_changed = grid.changed.connect([this, &grid, coordinates]() {
       // The nodes are vertices of the grid, so their coordinates match to
@@ -138,6 +141,7 @@ namespace mpm
           contact_gaps(state, false);
         const bool first_step = !contact.has_started();
         pairs_in_step.clear();
+        pairs_in_step_current = true;
         for_each_contact_node(
           [&](const ContactPair &pair) {
             pairs_in_step.insert({pair.node, pair.wall});

@@ -102,6 +102,7 @@ namespace mpm
     load(boost::archive::binary_iarchive &archive) override
     {
       archive >> contact >> pairs_in_step;
+      pairs_in_step_current = true;
     }
 
   private:
@@ -258,6 +259,12 @@ namespace mpm
     std::vector<double>                contact_by_position;
     /** The (node, wall) pairs this rank visits in the current step. */
     std::set<std::pair<unsigned int, unsigned int>> pairs_in_step;
+    /**
+     * Whether pairs_in_step is numbered as the grid is now: not after a
+     * change of the grid, until the next setup (an adaptive grid changes
+     * several times between two steps).
+     */
+    bool pairs_in_step_current = true;
     boost::signals2::scoped_connection grid_changing, grid_changed;
   };
 } // namespace mpm
