@@ -34,11 +34,13 @@ def ensure_matplotlib():
 
 
 def scene_options():
-    """The options --shape-functions=NAME, --dilatation-rate=NAME and
-    --geometry=NAME of a benchmark's command line: the settings they stand
+    """The options --shape-functions=NAME, --dilatation-rate=NAME,
+    --velocity-projection=NAME and --geometry=NAME of a benchmark's command
+    line: the settings they stand
     for, and a suffix for the names of its output, empty without them."""
     entries = {"--shape-functions=": "Grid/Shape functions",
                "--dilatation-rate=": "Time stepping/Dilatation rate",
+               "--velocity-projection=": "Time stepping/Velocity projection",
                "--geometry=": "Grid/Geometry"}
     settings, suffix = {}, ""
     for argument in sys.argv[1:]:

@@ -1,5 +1,7 @@
 #include <mpm/assembly/grid_transfer.h>
 
+#include <algorithm>
+
 namespace mpm
 {
   template <int dim>
@@ -129,10 +131,67 @@ namespace mpm
         for (unsigned int d = 0; d < dim; ++d)
           v[NodalLayout::velocity + d] =
             m > 0. ? v[NodalLayout::velocity + d] / m : 0.;
-        if (constrain)
-          for (const NodalCondition<dim> *condition : conditions)
-            if (condition->acts_on(node))
-              condition->constrain_velocity(node, v + NodalLayout::velocity);
+      }
+    if (corrected_velocity)
+      correct_nodal_velocity();
+    if (constrain)
+      for (const unsigned int node : nodes.nodes_to_solve())
+        for (const NodalCondition<dim> *condition : conditions)
+          if (condition->acts_on(node))
+            condition->constrain_velocity(node,
+                                          nodes.values_of(node) +
+                                            NodalLayout::velocity);
+  }
+
+
+
+  template <int dim>
+  void
+  GridTransfer<dim>::correct_nodal_velocity()
+  {
+    // The lumped velocities are read at the points while the correction
+    // is summed into the same components, and a projection clears the
+    // ghost nodes: keep them aside.
+    const std::vector<unsigned int> &solve_nodes = nodes.nodes_to_solve();
+    unsigned int                     n_nodes     = 0;
+    for (const unsigned int node : solve_nodes)
+      n_nodes = std::max(n_nodes, node + 1);
+    if (lumped_velocity.size() < n_nodes * dim)
+      lumped_velocity.resize(n_nodes * dim);
+    for (const unsigned int node : solve_nodes)
+      for (unsigned int d = 0; d < dim; ++d)
+        lumped_velocity[node * dim + d] =
+          nodes.values_of(node)[NodalLayout::velocity + d];
+
+    nodes.begin_projection(NodalLayout::velocity, dim);
+    for_each_point([&](const auto &particle, const Support<dim> &support) {
+      const ArrayView<const double> p = particle->get_properties();
+      double                        residual[dim];
+      for (unsigned int d = 0; d < dim; ++d)
+        residual[d] = p[Layout::velocity + d];
+      for (unsigned int i = 0; i < support.n_nodes; ++i)
+        for (unsigned int d = 0; d < dim; ++d)
+          residual[d] -=
+            support.N[i] * lumped_velocity[support.nodes[i] * dim + d];
+      const double m = p[Layout::mass];
+      for (unsigned int i = 0; i < support.n_nodes; ++i)
+        {
+          double *v = nodes.values_of(support.nodes[i]) + NodalLayout::velocity;
+          for (unsigned int d = 0; d < dim; ++d)
+            v[d] += support.N[i] * m * residual[d];
+        }
+    });
+    nodes.finish_projection();
+
+    for (const unsigned int node : solve_nodes)
+      {
+        double *     v = nodes.values_of(node);
+        const double m = v[NodalLayout::mass];
+        for (unsigned int d = 0; d < dim; ++d)
+          v[NodalLayout::velocity + d] =
+            m > 0. ? lumped_velocity[node * dim + d] +
+                       v[NodalLayout::velocity + d] / m :
+                     0.;
       }
   }
 
