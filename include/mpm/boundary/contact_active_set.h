@@ -255,7 +255,7 @@ namespace mpm
           for (unsigned int k = 0; k + size < pairs.size(); k += size)
             {
               const unsigned int n =
-                node(std::array<double, 3>{pairs[k], pairs[k + 1], pairs[k + 2]});
+                node(std::array<double, 3>{{pairs[k], pairs[k + 1], pairs[k + 2]}});
               if (n == static_cast<unsigned int>(-1))
                 continue;
               const std::pair<unsigned int, unsigned int> pair = {
