@@ -24,7 +24,13 @@
 //   round-off with Margin = 2, and with Margin = 0 (the material's cells
 //   have hanging vertices, condensed in the implicit system too) Newton
 //   converges and the centre of mass stays within 1 % of the uniform
-//   grid's.
+//   grid's;
+// - a block falling away from a rigid obstacle smaller than the finest
+//   cell (scenes/obstacle_left_behind.prm): the cells around the obstacle
+//   coarsen once the block has left, until no node lies within the finest
+//   cell of it; the run goes on to its end (the obstacle's reach is
+//   checked on the first grid only; checked at every grid change, the run
+//   stopped at t = 0.24 s with an input error).
 
 #include <deal.II/base/mpi.h>
 
@@ -384,6 +390,31 @@ check_newmark_column()
 
 
 
+void
+check_obstacle_left_behind()
+{
+  deallog << "--- a small obstacle the grid coarsens around" << std::endl;
+  std::string screen;
+  int         exit_code = -1;
+  auto csv = mpm_tests::run_scene("scenes/obstacle_left_behind.prm",
+                                  "output-obstacle-left-behind",
+                                  {},
+                                  &screen,
+                                  &exit_code);
+  mpm_tests::check("the run reaches its end time, 0.3 s",
+                   exit_code == 0 && !csv["time"].empty() &&
+                     csv["time"].back() > 0.3 - 1e-12);
+  // "mpm: the grid adapted N times" (rank 0 prints it, and logs).
+  const std::string  said = "the grid adapted ";
+  const auto         at   = screen.find(said);
+  const unsigned int n_adaptations =
+    at == std::string::npos ? 0 : std::stoul(screen.substr(at + said.size()));
+  deallog << "grid changes: " << n_adaptations << std::endl;
+  mpm_tests::check("the grid adapted during the run", n_adaptations > 0);
+}
+
+
+
 int
 main(int argc, char **argv)
 {
@@ -399,4 +430,5 @@ main(int argc, char **argv)
   check_uniform_stress<3>();
   check_column_collapse();
   check_newmark_column();
+  check_obstacle_left_behind();
 }

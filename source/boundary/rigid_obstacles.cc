@@ -112,22 +112,27 @@ namespace mpm
   RigidObstacles<dim>::setup()
   {
     // An obstacle must reach into the grid: some node of some rank within
-    // one cell of it at t = 0.
-    const double h = grid.minimum_cell_size();
-    for (const Obstacle &obstacle : obstacles)
+    // one cell of it at t = 0. Checked on the first grid only (see
+    // reach_checked).
+    if (!reach_checked)
       {
-        const Tensor<1, dim> u0   = obstacle.displacement_at(0.);
-        bool                 near = false;
-        const unsigned int   n_owned =
+        const double h = grid.minimum_cell_size();
+        const unsigned int n_owned =
           grid.node_partitioner()->locally_owned_size();
-        for (unsigned int node = 0; node < n_owned && !near; ++node)
-          near = obstacle.shape->signed_distance(grid.node_position(node) -
-                                                 u0) <= h;
-        if (!Utilities::MPI::logical_or(near, grid.get_communicator()))
-          throw InputError("Obstacles/" + obstacle.name +
-                           ": the obstacle lies outside the grid at t = 0 "
-                           "(no grid node within a cell of it); check its "
-                           "shape against Grid/Arguments.");
+        for (const Obstacle &obstacle : obstacles)
+          {
+            const Tensor<1, dim> u0   = obstacle.displacement_at(0.);
+            bool                 near = false;
+            for (unsigned int node = 0; node < n_owned && !near; ++node)
+              near = obstacle.shape->signed_distance(
+                       grid.node_position(node) - u0) <= h;
+            if (!Utilities::MPI::logical_or(near, grid.get_communicator()))
+              throw InputError("Obstacles/" + obstacle.name +
+                               ": the obstacle lies outside the grid at t = "
+                               "0 (no grid node within a cell of it); check "
+                               "its shape against Grid/Arguments.");
+          }
+        reach_checked = true;
       }
     // Where the obstacles stand before the first step (the first output).
     for (unsigned int k = 0; k < obstacles.size(); ++k)

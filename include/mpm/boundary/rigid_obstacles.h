@@ -54,7 +54,10 @@ namespace mpm
       return obstacles.empty();
     }
 
-    /** Check that each obstacle starts within a cell of the grid. */
+    /**
+     * On the first grid: check that each obstacle starts within a cell of
+     * it. On every grid: place the obstacles where they stand at t = 0.
+     */
     void
     setup() override;
 
@@ -162,6 +165,13 @@ namespace mpm
     mutable std::vector<Tensor<1, dim>> offsets;
     mutable std::vector<Tensor<1, dim>> velocities;
     mutable std::vector<Reaction>       reactions;
+
+    /**
+     * Whether setup() has checked the obstacles against a grid. An adaptive
+     * grid coarsens where the material has left, so a later grid may hold
+     * no node within its smallest cell of a small obstacle's start.
+     */
+    bool reach_checked = false;
 
     boost::signals2::scoped_connection grid_changed;
   };
