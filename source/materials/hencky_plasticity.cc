@@ -66,7 +66,8 @@ namespace mpm
   HenckyPlasticity::Step
   HenckyPlasticity::compute_step(
     const StepKinematics &         kinematics,
-    const ArrayView<const double> &old_internal_variables) const
+    const ArrayView<const double> &old_internal_variables,
+    const bool                     with_tangent) const
   {
     SymmetricTensor<2, 3> b_old = unit_symmetric_tensor<3>();
     for (unsigned int k = 0; k < 6; ++k)
@@ -88,8 +89,10 @@ namespace mpm
         eps[a]             = 0.5 * std::log(eigen[a].first);
       }
     trial_tau   = D * eps;
-    step.result = return_to_yield_surface(
-      trial_tau, old_internal_variables[equivalent_plastic_strain]);
+    step.result =
+      return_to_yield_surface(trial_tau,
+                              old_internal_variables[equivalent_plastic_strain],
+                              with_tangent);
     step.J = determinant(kinematics.F_new);
     return step;
   }
@@ -105,7 +108,8 @@ namespace mpm
     const Step step = compute_step(
       kinematics,
       ArrayView<const double>(internal_variables.data(),
-                              internal_variables.size()));
+                              internal_variables.size()),
+      false);
     std::array<SymmetricTensor<2, 3>, 3> m;
     stress = 0;
     for (unsigned int a = 0; a < 3; ++a)
@@ -172,7 +176,7 @@ namespace mpm
     const SymmetricTensor<2, 3> &,
     const ArrayView<const double> &old_internal_variables) const
   {
-    const Step          step = compute_step(kinematics, old_internal_variables);
+    const Step step = compute_step(kinematics, old_internal_variables, true);
     const Tensor<1, 3> &tau  = step.result.tau;
     const Tensor<2, 3> &D    = step.result.tangent;
     const Tensor<1, 3> &beta = step.beta;

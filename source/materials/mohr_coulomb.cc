@@ -194,18 +194,23 @@ namespace mpm
 
   HenckyPlasticity::Return
   MohrCoulomb::return_to_yield_surface(const Tensor<1, 3> &trial_tau,
-                                       const double plastic_strain) const
+                                       const double        plastic_strain,
+                                       const bool with_tangent) const
   {
-    const Tensor<2, 3>       D        = principal_stiffness();
-    const Planes             surfaces = planes(plastic_strain);
-    Return                   r;
-    r.tau     = trial_tau;
-    r.tangent = D;
-    if (largest_violation(surfaces, trial_tau) <= 0.)
-      return r;
-    r.plastic = true;
+    const Tensor<2, 3> D = principal_stiffness();
+    // Without softening the peak planes themselves, not a copy.
+    Planes        softened;
+    const Planes &surfaces =
+      softening_plastic_strain == 0. || !(plastic_strain > 0.) ?
+        peak_planes :
+        (softened = planes_of(strength(plastic_strain)));
+    Return r;
+    r.tau = trial_tau;
+    if (with_tangent)
+      r.tangent = D;
 
-    // Work in the ordered frame: sigma_1 >= sigma_2 >= sigma_3.
+    // Work in the ordered frame: sigma_1 >= sigma_2 >= sigma_3 (as
+    // largest_violation() does, sorted once here).
     std::array<unsigned int, 3> order = {{0, 1, 2}};
     std::sort(order.begin(), order.end(), [&](unsigned int a, unsigned int b) {
       return trial_tau[a] > trial_tau[b];
@@ -213,6 +218,17 @@ namespace mpm
     Tensor<1, 3> sigma_trial;
     for (unsigned int i = 0; i < 3; ++i)
       sigma_trial[i] = trial_tau[order[i]];
+    const unsigned int    n_planes = surfaces.size();
+    std::array<double, 6> violation;
+    double                largest  = -std::numeric_limits<double>::max();
+    for (unsigned int i = 0; i < n_planes; ++i)
+      {
+        violation[i] = surfaces[i].a * sigma_trial - surfaces[i].r;
+        largest      = std::max(largest, violation[i]);
+      }
+    if (largest <= 0.)
+      return r;
+    r.plastic = true;
 
     const double tolerance = 1e-12 * (surfaces[0].r + sigma_trial.norm() + 1.);
     auto admissible = [&](const Tensor<1, 3> &s) {
@@ -227,27 +243,25 @@ namespace mpm
     Tensor<1, 3> sigma;
     Tensor<2, 3> tangent;
     Tensor<1, 3> plastic_strain_step;
-    // What every trial below needs, per plane: D b, D a, a . D b of each
-    // pair, and the trial's violation. Fixed sizes throughout: the
-    // explicit scheme returns most points of a flowing granular body every
-    // step, and allocations dominated it.
-    const unsigned int          n_planes = surfaces.size();
+    // What every trial below needs, per plane: D b, D a and the scale of
+    // a . D b. Fixed sizes throughout: the explicit scheme returns most
+    // points of a flowing granular body every step, and allocations
+    // dominated it.
     std::array<Tensor<1, 3>, 6> Db, Da;
-    std::array<double, 6>       violation, norm;
+    std::array<double, 6>       norm;
     for (unsigned int i = 0; i < n_planes; ++i)
       {
-        Db[i]        = D * surfaces[i].b;
-        Da[i]        = D * surfaces[i].a;
-        violation[i] = surfaces[i].a * sigma_trial - surfaces[i].r;
-        norm[i]      = surfaces[i].a.norm() * Db[i].norm();
+        Db[i]   = D * surfaces[i].b;
+        Da[i]   = D * surfaces[i].a;
+        norm[i] = surfaces[i].a.norm() * Db[i].norm();
       }
 
     // The return to the n planes `active`: true if it is admissible.
     auto return_to = [&](const std::array<unsigned int, 3> &active,
                          const unsigned int                 n) {
-      // M_ij = a_i . D b_j, padded with the identity beyond n, so that its
-      // determinant and inverse are those of the n x n block.
-      Tensor<2, 3> M     = unit_symmetric_tensor<3>();
+      // M_ij = a_i . D b_j of the n planes, inverted in closed form for
+      // n = 1 and 2.
+      Tensor<2, 3> M, M_inverse;
       double       scale = 1.;
       for (unsigned int i = 0; i < n; ++i)
         {
@@ -255,9 +269,22 @@ namespace mpm
           for (unsigned int j = 0; j < n; ++j)
             M[i][j] = surfaces[active[i]].a * Db[active[j]];
         }
-      if (std::abs(determinant(M)) <= 1e-10 * scale)
+      const double det = n == 1 ? M[0][0] :
+                         n == 2 ? M[0][0] * M[1][1] - M[0][1] * M[1][0] :
+                                  determinant(M);
+      if (std::abs(det) <= 1e-10 * scale)
         return false;
-      const Tensor<2, 3>    M_inverse = invert(M);
+      if (n == 1)
+        M_inverse[0][0] = 1. / det;
+      else if (n == 2)
+        {
+          M_inverse[0][0] = M[1][1] / det;
+          M_inverse[0][1] = -M[0][1] / det;
+          M_inverse[1][0] = -M[1][0] / det;
+          M_inverse[1][1] = M[0][0] / det;
+        }
+      else
+        M_inverse = invert(M);
       std::array<double, 3> gamma     = {};
       Tensor<1, 3>          s         = sigma_trial;
       for (unsigned int i = 0; i < n; ++i)
@@ -271,29 +298,46 @@ namespace mpm
       if (!admissible(s))
         return false;
       sigma               = s;
-      tangent             = D;
       plastic_strain_step = Tensor<1, 3>();
       for (unsigned int i = 0; i < n; ++i)
+        plastic_strain_step += gamma[i] * surfaces[active[i]].b;
+      if (with_tangent)
         {
-          plastic_strain_step += gamma[i] * surfaces[active[i]].b;
-          for (unsigned int j = 0; j < n; ++j)
-            tangent -=
-              M_inverse[i][j] * outer_product(Db[active[i]], Da[active[j]]);
+          tangent = D;
+          for (unsigned int i = 0; i < n; ++i)
+            for (unsigned int j = 0; j < n; ++j)
+              tangent -=
+                M_inverse[i][j] * outer_product(Db[active[i]], Da[active[j]]);
         }
       return true;
     };
 
     // Fewest planes first: one, then the lines of two, the points of three.
+    // Without a tension cut-off the stress can rest only on the main plane
+    // 0 (k s_1 - s_3 = sigma_c), on its edges with plane 1 (s_1 = s_2) or
+    // plane 2 (s_2 = s_3), or on all three: plane 1 or 2 alone, or the two
+    // together, leave plane 0 violated unless two stresses are equal, where
+    // the edge holds them too. The explicit scheme returns most points of a
+    // flowing granular body every step, so the sets that cannot hold are
+    // not tried.
     bool done = false;
-    for (unsigned int i = 0; i < n_planes && !done; ++i)
-      done = return_to({{i, 0, 0}}, 1);
-    for (unsigned int i = 0; i < n_planes && !done; ++i)
-      for (unsigned int j = i + 1; j < n_planes && !done; ++j)
-        done = return_to({{i, j, 0}}, 2);
-    for (unsigned int i = 0; i < n_planes && !done; ++i)
-      for (unsigned int j = i + 1; j < n_planes && !done; ++j)
-        for (unsigned int l = j + 1; l < n_planes && !done; ++l)
-          done = return_to({{i, j, l}}, 3);
+    if (n_planes == 3)
+      {
+        done = return_to({{0, 0, 0}}, 1) || return_to({{0, 1, 0}}, 2) ||
+               return_to({{0, 2, 0}}, 2) || return_to({{0, 1, 2}}, 3);
+      }
+    else
+      {
+        for (unsigned int i = 0; i < n_planes && !done; ++i)
+          done = return_to({{i, 0, 0}}, 1);
+        for (unsigned int i = 0; i < n_planes && !done; ++i)
+          for (unsigned int j = i + 1; j < n_planes && !done; ++j)
+            done = return_to({{i, j, 0}}, 2);
+        for (unsigned int i = 0; i < n_planes && !done; ++i)
+          for (unsigned int j = i + 1; j < n_planes && !done; ++j)
+            for (unsigned int l = j + 1; l < n_planes && !done; ++l)
+              done = return_to({{i, j, l}}, 3);
+      }
     // The apex, where the flow of the planes (psi = 0: deviatoric) cannot
     // reach: the stress goes to it and the rest of the step is plastic.
     if (!done)
@@ -314,7 +358,7 @@ namespace mpm
     for (unsigned int i = 0; i < 3; ++i)
       {
         r.tau[order[i]] = sigma[i];
-        for (unsigned int j = 0; j < 3; ++j)
+        for (unsigned int j = 0; j < 3 && with_tangent; ++j)
           r.tangent[order[i]][order[j]] = tangent[i][j];
       }
     r.plastic_strain_increment =

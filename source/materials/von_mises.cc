@@ -52,11 +52,13 @@ namespace mpm
 
   HenckyPlasticity::Return
   VonMises::return_to_yield_surface(const Tensor<1, 3> &trial_tau,
-                                    const double        plastic_strain) const
+                                    const double        plastic_strain,
+                                    const bool          with_tangent) const
   {
     Return r;
-    r.tau     = trial_tau;
-    r.tangent = principal_stiffness();
+    r.tau = trial_tau;
+    if (with_tangent)
+      r.tangent = principal_stiffness();
     const double f = yield_function(trial_tau, plastic_strain);
     if (f <= 0.)
       return r;
@@ -74,7 +76,7 @@ namespace mpm
     for (unsigned int a = 0; a < 3; ++a)
       {
         r.tau[a] = p + factor * s[a];
-        for (unsigned int b = 0; b < 3; ++b)
+        for (unsigned int b = 0; b < 3 && with_tangent; ++b)
           r.tangent[a][b] =
             K + 2. * mu * factor * ((a == b ? 1. : 0.) - 1. / 3.) +
             6. * mu * mu * (gamma / q - 1. / (3. * mu + hardening_modulus)) *

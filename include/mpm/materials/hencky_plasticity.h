@@ -65,7 +65,7 @@ namespace mpm
     {
       /** Principal Kirchhoff stresses, in the order of the trial ones. */
       Tensor<1, 3> tau;
-      /** d tau_a / d eps_trial_b. */
+      /** d tau_a / d eps_trial_b, if asked for (else zero). */
       Tensor<2, 3> tangent;
       /** Increment of the equivalent plastic strain. */
       double plastic_strain_increment = 0.;
@@ -76,12 +76,14 @@ namespace mpm
     /**
      * Return the principal trial Kirchhoff stress (tension positive, any
      * order) to the yield surface, given the equivalent plastic strain at
-     * the start of the step. Elastic states come back unchanged with
-     * tangent D.
+     * the start of the step. Elastic states come back unchanged (with
+     * tangent D). The tangent is worked out only `with_tangent`: the
+     * explicit scheme needs none.
      */
     virtual Return
     return_to_yield_surface(const Tensor<1, 3> &trial_tau,
-                            double              plastic_strain) const = 0;
+                            double              plastic_strain,
+                            bool                with_tangent) const = 0;
 
     /**
      * The yield function at a principal Kirchhoff stress: <= 0 is
@@ -113,9 +115,11 @@ namespace mpm
       double                      J;
     };
 
+    /** The return's tangent `with_tangent` only. */
     Step
     compute_step(const StepKinematics &         kinematics,
-                 const ArrayView<const double> &old_internal_variables) const;
+                 const ArrayView<const double> &old_internal_variables,
+                 bool                           with_tangent) const;
   };
 } // namespace mpm
 

@@ -47,7 +47,8 @@ namespace mpm
 
     Return
     return_to_yield_surface(const Tensor<1, 3> &trial_tau,
-                            double              plastic_strain) const override;
+                            double              plastic_strain,
+                            bool                with_tangent) const override;
 
     double
     yield_function(const Tensor<1, 3> &tau,
