@@ -4,7 +4,8 @@
 //   inside the yield surface to 1e-10 of its size, for Mohr-Coulomb
 //   (associated and not, softening, with a tension cut-off) and von Mises
 //   (perfect and hardening); the Mohr-Coulomb returns visit the plane,
-//   both edges and the apex, or with the cut-off its plane and corner;
+//   both edges (at least 10 returns to each, counted apart) and the apex,
+//   or with the cut-off its plane and corner;
 // - the consistent tangent (closed form, HenckyPlasticity) matches central
 //   differences of the stress update to 1e-6 at elastic, plane, edge and
 //   apex states, and after an earlier plastic step with a rotation;
@@ -210,7 +211,7 @@ main(int argc, char **argv)
         const bool   mohr = name.find("Mohr") != std::string::npos;
         double       worst   = 0.;
         unsigned int plane = 0, edge = 0, apex = 0, tension = 0,
-                     tension_corner = 0;
+                     tension_corner = 0, edge_12 = 0, edge_23 = 0;
         for (unsigned int sample = 0; sample < 750; ++sample)
           {
             State  state;
@@ -236,7 +237,8 @@ main(int argc, char **argv)
             const double       f   = law->yield_function(
               tau, mohr ? start_plastic_strain : state.internal[0]);
             worst = std::max(worst, f / (sigma_c + sigma_y));
-            // Which return: the apex has three equal stresses, an edge two.
+            // Which return: the apex has three equal stresses, an edge two
+            // (tau is in descending order: tau_1 = tau_2 or tau_2 = tau_3).
             const double scale = tau.norm() * 1e-9 + 1.;
             const bool   e01   = std::abs(tau[0] - tau[1]) < scale;
             const bool   e12   = std::abs(tau[1] - tau[2]) < scale;
@@ -253,7 +255,11 @@ main(int argc, char **argv)
                 else if (e01 && e12)
                   ++apex;
                 else if (e01 || e12 || e02)
-                  ++edge;
+                  {
+                    ++edge;
+                    edge_12 += e01;
+                    edge_23 += e12;
+                  }
                 else
                   ++plane;
               }
@@ -268,9 +274,11 @@ main(int argc, char **argv)
                            plane >= 10 && edge >= 10 && tension >= 10 &&
                              tension_corner >= 10);
         else if (mohr)
-          mpm_tests::check(name + ": returns to the plane, the edges and "
-                                  "the apex (at least 10 each)",
-                           plane >= 10 && edge >= 10 && apex >= 10);
+          mpm_tests::check(name + ": returns to the plane, both edges "
+                                  "(tau_1 = tau_2 and tau_2 = tau_3) and the "
+                                  "apex (at least 10 each)",
+                           plane >= 10 && edge_12 >= 10 && edge_23 >= 10 &&
+                             apex >= 10);
       }
   }
 
