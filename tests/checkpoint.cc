@@ -9,8 +9,9 @@
 // explicit scheme, the quasi-static scheme,
 // Newmark with walls, a wall that ends and an outflow boundary, an inflow
 // whose releases fall before, between and after the parts, and (on
-// one rank) the meshfree methods with their node cloud. Two last cases continue runs with other step sizes, as after
-// a run that went unstable. Bad input for checkpoints is in bad_input.cc.
+// one rank) the meshfree methods with their node cloud. Two cases continue
+// runs with other step sizes, as after a run that went unstable, and one
+// with another velocity projection. Bad input for checkpoints is in bad_input.cc.
 
 #include <deal.II/base/mpi.h>
 
@@ -239,6 +240,14 @@ main(int argc, char **argv)
                 {"Time stepping/End time=0.01"},
                 "Time stepping/Time step=1e-3",
                 {2e-3, 1e-3, 1e-3, 1e-3, 1e-3, 1e-3, 1e-3, 1e-3, 1e-3});
+  // The velocity projection is made anew at every step: a continued run
+  // may change it (and so continue checkpoints from before the entry).
+  changed_steps("free fall, explicit, Velocity projection changed at the "
+                "restart",
+                mpm_tests::source_file("scenes/free_fall.prm"),
+                {"Time stepping/End time=0.02"},
+                "Time stepping/Velocity projection=corrected",
+                {5e-3, 5e-3, 5e-3, 5e-3});
   // oedometer.prm: 10 load steps over End time 1. With 5, the step of 0.1
   // grows by doubling to 0.2.
   changed_steps("oedometer, quasi-static, Load steps halved at the restart",

@@ -345,10 +345,13 @@ namespace mpm
       std::make_unique<VtuOutput<dim>>(prm, output_directory, communicator);
     time_series = std::make_unique<TimeSeries<dim>>(
       prm, output_directory, gravity, *points, nodal_conditions, restart);
-    // The tangent check only prints (and checkpoints from before it lack
-    // the entry); the scheme's step entries may change too.
+    // The tangent check only prints, and the explicit velocity projection
+    // is made anew at every step (checkpoints from before either lack the
+    // entry); the scheme's step entries may change too.
     std::vector<std::string> entries_that_may_change = {
-      "Output/Directory", "Newton/Check tangent"};
+      "Output/Directory",
+      "Newton/Check tangent",
+      "Time stepping/Velocity projection"};
     for (const std::string &entry : scheme->entries_that_may_change())
       entries_that_may_change.push_back(entry);
     for (const std::string &entry : LoadBalance<dim>::entries_that_may_change())
