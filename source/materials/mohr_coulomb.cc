@@ -243,17 +243,18 @@ namespace mpm
     Tensor<1, 3> sigma;
     Tensor<2, 3> tangent;
     Tensor<1, 3> plastic_strain_step;
-    // What every trial below needs, per plane: D b, D a and the scale of
-    // a . D b. Fixed sizes throughout: the explicit scheme returns most
-    // points of a flowing granular body every step, and allocations
-    // dominated it.
+    // What every trial below needs, per plane: D b and the scale of
+    // a . D b, and D a for the tangent. Fixed sizes throughout: the
+    // explicit scheme returns most points of a flowing granular body every
+    // step, and allocations dominated it.
     std::array<Tensor<1, 3>, 6> Db, Da;
     std::array<double, 6>       norm;
     for (unsigned int i = 0; i < n_planes; ++i)
       {
         Db[i]   = D * surfaces[i].b;
-        Da[i]   = D * surfaces[i].a;
         norm[i] = surfaces[i].a.norm() * Db[i].norm();
+        if (with_tangent)
+          Da[i] = D * surfaces[i].a;
       }
 
     // The return to the n planes `active`: true if it is admissible.
