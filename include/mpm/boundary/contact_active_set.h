@@ -262,7 +262,7 @@ namespace mpm
                 n, static_cast<unsigned int>(pairs[k + 3])};
               held.insert(pair);
               if (pairs[k + 4] == 1.)
-                sliding[pair] = {pairs[k + 5], pairs[k + 6], pairs[k + 7]};
+                sliding[pair] = {{pairs[k + 5], pairs[k + 6], pairs[k + 7]}};
             }
           started = started || pairs.back() == 1.;
         }
