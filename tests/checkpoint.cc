@@ -11,11 +11,19 @@
 // whose releases fall before, between and after the parts, and (on
 // one rank) the meshfree methods with their node cloud. Two cases continue
 // runs with other step sizes, as after a run that went unstable, and one
-// with another velocity projection. Bad input for checkpoints is in bad_input.cc.
+// with another velocity projection. A checkpoint rewritten without one entry
+// (as one written before mpm declared it) continues if the entry is at its
+// default and is refused if the scene sets it. Bad input for checkpoints is
+// in bad_input.cc.
 
 #include <deal.II/base/mpi.h>
 
 #include <mpm/core/application.h>
+
+#include <boost/archive/binary_iarchive.hpp>
+#include <boost/archive/binary_oarchive.hpp>
+#include <boost/serialization/map.hpp>
+#include <boost/serialization/string.hpp>
 
 #include <algorithm>
 #include <filesystem>
@@ -192,6 +200,53 @@ namespace
                      first_code == 0 && second_code == 0);
     mpm_tests::check("the steps have the expected sizes", sizes);
   }
+
+  /**
+   * A checkpoint of a scene whose saved entries lack `entry`, as one
+   * written before mpm declared it: this rank's file is rewritten without
+   * it (its layout: format version, ranks, the scene's entries, the state
+   * and its checksum, which covers the state only). Returns the exit code
+   * of the continued run.
+   */
+  int
+  continue_without_entry(const std::string &             scene,
+                         const std::vector<std::string> &settings,
+                         const std::string &             entry)
+  {
+    const std::string directory = "output-older-checkpoint";
+    if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+      std::filesystem::remove_all(directory);
+    MPI_Barrier(MPI_COMM_WORLD);
+    std::vector<std::string> first = settings;
+    first.insert(first.end(),
+                 stop_after_one_step.begin(),
+                 stop_after_one_step.end());
+    if (run(scene, directory, first, false) != 0)
+      return -1;
+    const std::string file =
+      directory + "/checkpoint/rank-" +
+      std::to_string(Utilities::MPI::this_mpi_process(MPI_COMM_WORLD)) +
+      ".bin";
+    unsigned int                       version = 0, n_ranks = 0;
+    std::map<std::string, std::string> entries;
+    std::string                        state;
+    std::uint32_t                      checksum = 0;
+    {
+      std::ifstream                   in(file, std::ios::binary);
+      boost::archive::binary_iarchive archive(in);
+      archive >> version >> n_ranks >> entries >> state >> checksum;
+    }
+    const bool had_entry = entries.erase(entry) == 1;
+    {
+      std::ofstream                   out(file, std::ios::binary);
+      boost::archive::binary_oarchive archive(out);
+      archive << version << n_ranks << entries << state << checksum;
+    }
+    MPI_Barrier(MPI_COMM_WORLD);
+    const int code = had_entry ? run(scene, directory, settings, true) : -1;
+    deallog << "without " << entry << ": exit code " << code << std::endl;
+    return code;
+  }
 } // namespace
 
 
@@ -248,6 +303,22 @@ main(int argc, char **argv)
                 {"Time stepping/End time=0.02"},
                 "Time stepping/Velocity projection=corrected",
                 {5e-3, 5e-3, 5e-3, 5e-3});
+  // A checkpoint written before an entry was declared continues when the
+  // entry is at its default (it keeps the behaviour of the older mpm), and
+  // is refused when the scene sets another value.
+  deallog << "--- a checkpoint that lacks an entry" << std::endl;
+  const std::vector<std::string> fall = {"Time stepping/End time=0.02"};
+  const std::string free_fall = mpm_tests::source_file("scenes/free_fall.prm");
+  mpm_tests::check(
+    "without Adaptive grid/Finer levels, at its default: continued, exit 0",
+    continue_without_entry(free_fall, fall, "Adaptive grid/Finer levels") ==
+      0);
+  mpm_tests::check(
+    "without Materials/soft/Young's modulus, which the scene sets: "
+    "refused, exit 2",
+    continue_without_entry(free_fall, fall, "Materials/soft/Young's modulus") ==
+      2);
+
   // oedometer.prm: 10 load steps over End time 1. With 5, the step of 0.1
   // grows by doubling to 0.2.
   changed_steps("oedometer, quasi-static, Load steps halved at the restart",

@@ -53,7 +53,7 @@ namespace mpm
                          const MPI_Comm                  communicator)
     : communicator(communicator)
     , checkpoint_directory(output_directory + "/checkpoint")
-    , scene(scene_entries(prm))
+    , scene(scene_entries(prm, &entries_at_default))
     , entries_that_may_change(
         with_checkpoint_entries(entries_that_may_change))
   {
@@ -263,6 +263,10 @@ namespace mpm
           saved == saved_scene.end() ? "(no such entry)" : saved->second;
         const std::string is =
           now == scene.end() ? "(no such entry)" : now->second;
+        // An entry added to mpm since the checkpoint was written, at its
+        // default, keeps the behaviour the checkpoint was written with.
+        if (saved == saved_scene.end() && entries_at_default.count(entry.first))
+          continue;
         if (was != is && !may_change(entry.first))
           changed += "\n  " + entry.first + ": was '" + was + "', is '" + is +
                      "'";
@@ -280,15 +284,18 @@ namespace mpm
 
 
   std::map<std::string, std::string>
-  Checkpoint::scene_entries(const ParameterHandler &prm)
+  Checkpoint::scene_entries(const ParameterHandler &prm,
+                            std::set<std::string> * at_default)
   {
-    // The short PRM form has one 'set entry = value' per line, inside
-    // 'subsection' ... 'end' blocks.
+    // The PRM form has one 'set entry = value' per line, inside
+    // 'subsection' ... 'end' blocks, and marks a value that is not the
+    // entry's default with '# default: ...' after it.
     std::ostringstream text;
-    prm.print_parameters(text, ParameterHandler::ShortPRM);
+    prm.print_parameters(text, ParameterHandler::PRM);
     std::map<std::string, std::string> entries;
     std::vector<std::string>           sections;
     std::istringstream                 lines(text.str());
+    const std::string                  default_mark = "# default:";
     for (std::string line; std::getline(lines, line);)
       {
         line = Utilities::trim(line);
@@ -298,14 +305,18 @@ namespace mpm
           sections.pop_back();
         else if (line.rfind("set ", 0) == 0)
           {
-            const auto  equals = line.find(" = ");
+            const auto  mark   = line.find(default_mark);
+            const auto  equals = line.find(" =");
             std::string path;
             for (const auto &section : sections)
               path += section + "/";
             path += Utilities::trim(line.substr(4, equals - 4));
-            entries[path] = equals == std::string::npos ?
-                              "" :
-                              Utilities::trim(line.substr(equals + 3));
+            entries[path] =
+              equals == std::string::npos ?
+                "" :
+                Utilities::trim(line.substr(equals + 2, mark - equals - 2));
+            if (at_default != nullptr && mark == std::string::npos)
+              at_default->insert(path);
           }
       }
     return entries;

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -107,9 +108,13 @@ namespace mpm
     RankFile
     read_rank_file(const std::string &directory) const;
 
-    /** Every entry of the scene as 'Section/entry' -> value. */
+    /**
+     * Every entry of the scene as 'Section/entry' -> value; with
+     * `at_default`, the entries whose value is their default go there.
+     */
     static std::map<std::string, std::string>
-    scene_entries(const ParameterHandler &prm);
+    scene_entries(const ParameterHandler &prm,
+                  std::set<std::string> * at_default = nullptr);
 
     /** `entries` and, last, the whole Checkpoint subsection. */
     static std::vector<std::string>
@@ -126,6 +131,8 @@ namespace mpm
 
     const MPI_Comm                           communicator;
     const std::string                        checkpoint_directory;
+    /** Declared before `scene`, which fills it. */
+    std::set<std::string>                    entries_at_default;
     const std::map<std::string, std::string> scene;
     const std::vector<std::string>           entries_that_may_change;
     double                                   interval_seconds;
