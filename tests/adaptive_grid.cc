@@ -19,6 +19,12 @@
 //   nodes carry the same sums), with fewer cells; and a run continued
 //   from a checkpoint written after the grid adapted repeats the run made
 //   in one go to the last digit;
+// - Finer levels on the same collapse: a Finer region over the whole box
+//   gives the time series of the grid refined once more everywhere (and
+//   so of the uniform grid); finer levels where the material flows end
+//   with more cells than the grid refined once and fewer than the one
+//   refined twice, and a run continued from a checkpoint repeats the run
+//   made in one go to the last digit;
 // - the cohesive column collapse with Newmark (prm/column_collapse.prm,
 //   0.6 s) on the adaptive grid gives the uniform grid's time series to
 //   round-off with Margin = 2, and with Margin = 0 (the material's cells
@@ -285,6 +291,97 @@ check_uniform_stress()
 
 
 
+/** The number that follows `before` in `text`, or -1. */
+double
+number_after(const std::string &text, const std::string &before)
+{
+  const auto at = text.find(before);
+  if (at == std::string::npos)
+    return -1.;
+  std::istringstream in(text.substr(at + before.size()));
+  double             n = -1.;
+  in >> n;
+  return n;
+}
+
+
+
+/**
+ * The same collapse with part of the material one level finer than the
+ * rest: `adaptive` are the settings of the run refined twice everywhere
+ * near the material, `fixed` the uniform grid's time series, `screen`
+ * what the adaptive run printed.
+ */
+void
+check_finer_levels(const std::string &                   scene,
+                   const std::vector<std::string> &      adaptive,
+                   mpm_tests::Columns &                  fixed,
+                   const std::string &                   screen)
+{
+  deallog << "--- finer levels in a region, and where material flows"
+          << std::endl;
+  std::vector<std::string> once = adaptive, region = adaptive,
+                           flowing;
+  for (auto &setting : once)
+    if (setting == "Adaptive grid/Refinement levels=2")
+      setting = "Adaptive grid/Refinement levels=1";
+  flowing = once;
+  region  = once;
+  region.insert(region.end(),
+                {"Adaptive grid/Finer levels=1",
+                 "Adaptive grid/Finer where=region",
+                 "Adaptive grid/Finer region/Lower corner=-1, -1",
+                 "Adaptive grid/Finer region/Upper corner=1, 1"});
+  flowing.insert(flowing.end(),
+                 {"Adaptive grid/Finer levels=1",
+                  "Adaptive grid/Finer where=plastic flow",
+                  "Adaptive grid/Finer plastic strain rate=2"});
+  std::string once_screen, region_screen, flowing_screen, first_screen;
+  mpm_tests::run_scene(scene, "output-once", once, &once_screen);
+  auto everywhere = mpm_tests::run_scene(
+    scene, "output-finer-region", region, &region_screen);
+  auto flow = mpm_tests::run_scene(
+    scene, "output-finer-flow", flowing, &flowing_screen);
+  std::vector<std::string> first = flowing;
+  first.push_back("Time stepping/End time=0.03");
+  mpm_tests::run_scene(scene, "output-finer-parts", first, &first_screen);
+  int  code  = -1;
+  auto parts = mpm_tests::run_scene(
+    scene, "output-finer-parts", flowing, nullptr, &code, true);
+  if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) != 0)
+    return;
+
+  const std::string at_end = " times; ";
+  const double      cells_once =
+    number_after(once_screen.substr(once_screen.find(at_end)), at_end),
+               cells_flow = number_after(
+                 flowing_screen.substr(flowing_screen.find(at_end)), at_end),
+               cells_finest =
+                 number_after(screen.substr(screen.find(at_end)), at_end);
+  deallog << "cells at the end: " << cells_once << " refined once, "
+          << cells_flow << " with the flowing material once more, "
+          << cells_finest << " refined twice" << std::endl;
+  mpm_tests::check("a Finer region over the whole box gives the time series "
+                   "of the grid refined twice (and of the uniform grid) to "
+                   "1e-9 of each column's largest value",
+                   mpm_tests::largest_difference(fixed, everywhere) < 1e-9);
+  mpm_tests::check("refined where the material flows: more cells than the "
+                   "grid refined once at the end, fewer than the one refined "
+                   "twice",
+                   cells_once > 0. && cells_once < cells_flow &&
+                     cells_flow < cells_finest);
+  mpm_tests::check("its mass stays the mass at the start to 1e-12",
+                   std::abs(flow["mass"].back() / flow["mass"].front() - 1.) <
+                     1e-12);
+  mpm_tests::check("a run continued from a checkpoint repeats it to the "
+                   "last digit (each point's plastic strain at the last "
+                   "check is saved, and the time of that check)",
+                   code == 0 &&
+                     mpm_tests::largest_difference(flow, parts) == 0.);
+}
+
+
+
 void
 check_column_collapse()
 {
@@ -316,19 +413,10 @@ check_column_collapse()
   int  code  = -1;
   auto parts = mpm_tests::run_scene(
     scene, "output-parts", adaptive, nullptr, &code, true);
+  check_finer_levels(scene, adaptive, fixed, screen);
   if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) != 0)
     return;
 
-  const auto number_after = [](const std::string &text,
-                               const std::string &before) {
-    const auto at = text.find(before);
-    if (at == std::string::npos)
-      return -1.;
-    std::istringstream in(text.substr(at + before.size()));
-    double             n = -1.;
-    in >> n;
-    return n;
-  };
   const double start_cells =
                  number_after(screen, "mpm: adaptive grid, "),
                adaptations_before_stop =
@@ -378,7 +466,7 @@ check_newmark_column()
                    "to 1e-9 of each column's largest value",
                    mpm_tests::largest_difference(fixed, following) < 1e-9);
   double gap = 0.;
-  for (const std::string &column : {"centre_of_mass_x", "centre_of_mass_y"})
+  for (const std::string column : {"centre_of_mass_x", "centre_of_mass_y"})
     gap = std::max(gap,
                    std::abs(hanging[column].back() - fixed[column].back()) /
                      fixed[column].back());

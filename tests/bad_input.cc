@@ -341,6 +341,22 @@ main(int argc, char **argv)
   run_case("an adaptive grid with smooth shape functions",
            with({"Adaptive grid/Refinement levels=1",
                  "Grid/Shape functions=uGIMP"}));
+  run_case("finer levels that say not where",
+           with({"Adaptive grid/Finer levels=1"}));
+  run_case("a finer region with no finer levels",
+           with({"Adaptive grid/Finer where=region"}));
+  run_case("a finer region whose corners are swapped",
+           with({"Adaptive grid/Finer levels=1",
+                 "Adaptive grid/Finer where=region",
+                 "Adaptive grid/Finer region/Lower corner=1, 1",
+                 "Adaptive grid/Finer region/Upper corner=0, 0"}));
+  run_case("finer levels by plastic flow in an elastic body",
+           with({"Adaptive grid/Finer levels=1",
+                 "Adaptive grid/Finer where=plastic flow"}));
+  run_case("finer levels by plastic flow with no periodic check",
+           with({"Adaptive grid/Finer levels=1",
+                 "Adaptive grid/Finer where=plastic flow",
+                 "Adaptive grid/Check interval=0"}));
   {
     // A run that leaves a checkpoint (at its end), to continue wrongly.
     const std::vector<std::string> checkpointed = {

@@ -233,7 +233,8 @@ namespace mpm
       *grid,
       internal_names,
       scheme_name != "explicit",
-      scheme_name != "explicit" || loads->is_active());
+      scheme_name != "explicit" || loads->is_active(),
+      GridAdaptation<dim>::measures_plastic_strain_rate(prm));
     points->parse_outflow(prm);
 
     // A grid that follows the material is refined around the bodies before
@@ -243,18 +244,28 @@ namespace mpm
       return body.region().signed_distance(cell->center()) <=
              0.5 * cell->diameter();
     };
+    std::vector<bool> plastic_law;
+    for (const auto &material : materials)
+      plastic_law.push_back(material->n_internal_variables() > 0 &&
+                            material->internal_variable_names()[0] ==
+                              "plastic_strain");
     adaptation = std::make_unique<GridAdaptation<dim>>(
-      prm, *grid, *points, [this, near_body](const auto &cell) {
+      prm,
+      *grid,
+      *points,
+      [this, near_body](const auto &cell) {
         return std::any_of(bodies.begin(),
                            bodies.end(),
                            [&](const Body<dim> &body) {
                              return body.is_inflow() && near_body(body, cell);
                            });
       },
+      plastic_law,
       pcout);
     if (adaptation->enabled() &&
         (method != "MPM" || shape_functions != GridShapeFunctions::linear))
-      throw InputError("Adaptive grid/Refinement levels > 0 needs Method = "
+      throw InputError("Adaptive grid/Refinement levels or Finer levels > 0 "
+                       "needs Method = "
                        "MPM and Grid/Shape functions = linear; the meshfree "
                        "methods and the smooth shape functions take a fixed "
                        "grid.");
@@ -556,7 +567,7 @@ namespace mpm
         // step makes the same check.
         {
           TimerOutput::Scope t(timer, "adaptive grid");
-          if (adaptation->check(step))
+          if (adaptation->check(step, time))
             load_balance->grid_adapted();
         }
         {

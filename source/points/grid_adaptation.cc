@@ -2,6 +2,7 @@
 #include <deal.II/lac/la_parallel_vector.h>
 
 #include <mpm/base/input_error.h>
+#include <mpm/base/shape_parameters.h>
 #include <mpm/points/grid_adaptation.h>
 
 #include <boost/archive/binary_iarchive.hpp>
@@ -43,7 +44,43 @@ namespace mpm
       "0: only when a point enters a cell that is not at the finest "
       "level, which is checked at every step. A check costs 3 Margin "
       "exchanges of the nodes on the ranks' boundaries.");
+    prm.declare_entry(
+      "Finer levels", "0", Patterns::Integer(0, 10),
+      "Levels beyond Refinement levels for the material that Finer where "
+      "names, and its Margin rings; the rest of the material stays at "
+      "Refinement levels. The explicit time step follows the finest "
+      "cells, so it shrinks with them; bodies seeded into finer cells get "
+      "more, smaller points.");
+    prm.declare_entry(
+      "Finer where", "", Patterns::MultipleSelection("region|plastic flow"),
+      "Which material gets the Finer levels: 'region', the points that "
+      "lie in the shape of the subsection Finer region; 'plastic flow', "
+      "the points whose equivalent plastic strain grew faster than Finer "
+      "plastic strain rate since the last check (measured at every check, "
+      "so Check interval must be above 0); or both, comma-separated.");
+    prm.declare_entry(
+      "Finer plastic strain rate", "1", Patterns::Double(0.),
+      "(1/s) With Finer where = plastic flow: the rate of the equivalent "
+      "plastic strain above which a point gets the Finer levels.");
+    prm.enter_subsection("Finer region");
+    ShapeParameters<dim>::declare_parameters(
+      prm, "whose material gets the Finer levels (Finer where = region).");
     prm.leave_subsection();
+    prm.leave_subsection();
+  }
+
+
+
+  template <int dim>
+  bool
+  GridAdaptation<dim>::measures_plastic_strain_rate(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Adaptive grid");
+    const std::string where = prm.get("Finer where");
+    const bool        rate  = where.find("plastic flow") != std::string::npos &&
+                      prm.get_integer("Finer levels") > 0;
+    prm.leave_subsection();
+    return rate;
   }
 
 
@@ -51,20 +88,58 @@ namespace mpm
   template <int dim>
   GridAdaptation<dim>::GridAdaptation(ParameterHandler &         prm,
                                       Grid<dim> &                grid,
-                                      const MaterialPoints<dim> &points,
+                                      MaterialPoints<dim> &      points,
                                       const Occupied &           reserved,
+                                      const std::vector<bool> &  plastic_law,
                                       ConditionalOStream &       pcout)
     : grid(grid)
     , points(points)
     , reserved(reserved)
+    , plastic_law(plastic_law)
     , pcout(pcout)
   {
     prm.enter_subsection("Adaptive grid");
     levels   = prm.get_integer("Refinement levels");
     margin   = prm.get_integer("Margin");
     interval = prm.get_integer("Check interval");
+    const unsigned int finer_levels = prm.get_integer("Finer levels");
+    const std::string  where        = prm.get("Finer where");
+    const bool by_region = where.find("region") != std::string::npos;
+    const bool by_flow   = where.find("plastic flow") != std::string::npos;
+    if ((finer_levels > 0) != (by_region || by_flow))
+      throw InputError(finer_levels > 0 ?
+                         "Adaptive grid/Finer levels > 0 needs Finer where "
+                         "(region, plastic flow, or both)." :
+                         "Adaptive grid/Finer where = " + where +
+                           " needs Finer levels > 0.");
+    if (by_region)
+      {
+        prm.enter_subsection("Finer region");
+        Point<dim> center;
+        finer_region = ShapeParameters<dim>::create(
+          prm, "Adaptive grid/Finer region", center);
+        prm.leave_subsection();
+      }
+    if (by_flow)
+      {
+        finer_plastic_strain_rate = prm.get_double("Finer plastic strain rate");
+        if (!(finer_plastic_strain_rate > 0.))
+          throw InputError("Adaptive grid/Finer plastic strain rate must be "
+                           "positive with Finer where = plastic flow.");
+        if (interval == 0)
+          throw InputError("Adaptive grid/Finer where = plastic flow "
+                           "measures the rate between checks, so Check "
+                           "interval must be above 0.");
+        if (std::none_of(plastic_law.begin(),
+                         plastic_law.end(),
+                         [](const bool plastic) { return plastic; }))
+          throw InputError("Adaptive grid/Finer where = plastic flow needs a "
+                           "material whose law flows plastically (its "
+                           "points carry a plastic_strain).");
+      }
     prm.leave_subsection();
-    finest_level = grid.base_level() + levels;
+    material_level = grid.base_level() + levels;
+    finest_level   = material_level + finer_levels;
   }
 
 
@@ -75,7 +150,14 @@ namespace mpm
   {
     if (!enabled())
       return;
-    adapt(occupied, true);
+    // Before the points: the material near the Finer region gets the
+    // finest cells, so that its points are seeded into them.
+    const Occupied near_finer_region = [&](const auto &cell) {
+      return finer_region && occupied(cell) &&
+             finer_region->signed_distance(cell->center()) <=
+               0.5 * cell->diameter();
+    };
+    adapt(occupied, near_finer_region, true);
     pcout << "mpm: adaptive grid, "
           << grid.get_triangulation().n_global_active_cells()
           << " cells at the start (the uniform grid of the finest cells "
@@ -89,16 +171,24 @@ namespace mpm
 
   template <int dim>
   bool
-  GridAdaptation<dim>::check(const unsigned int step)
+  GridAdaptation<dim>::check(const unsigned int step, const double time)
   {
     if (!enabled())
       return false;
     const Occupied holding_material = [this](const auto &cell) {
       return holds_points(cell) || reserved(cell);
     };
+    const Occupied finer = [this, time](const auto &cell) {
+      if (finest_level == material_level)
+        return false;
+      for (const auto &point : points.handler().particles_in_cell(cell))
+        if (gets_finer_levels(point, time))
+          return true;
+      return false;
+    };
     bool point_in_coarse_cell = false;
     for (const auto &cell : grid.get_triangulation().active_cell_iterators())
-      if (cell->is_locally_owned() && cell->level() < finest_level &&
+      if (cell->is_locally_owned() && cell->level() < material_level &&
           holds_points(cell))
         {
           point_in_coarse_cell = true;
@@ -107,9 +197,12 @@ namespace mpm
     bool changed = false;
     if (Utilities::MPI::logical_or(point_in_coarse_cell,
                                    grid.get_communicator()))
-      changed = adapt(holding_material, true);
+      changed = adapt(holding_material, finer, true);
     else if (interval > 0 && step % interval == 0)
-      changed = adapt(holding_material, false);
+      changed = adapt(holding_material, finer, false);
+    else
+      return false;
+    record_plastic_strain(time);
     adaptations += changed;
     return changed;
   }
@@ -118,30 +211,72 @@ namespace mpm
 
   template <int dim>
   bool
-  GridAdaptation<dim>::adapt(const Occupied &occupied, bool refine)
+  GridAdaptation<dim>::gets_finer_levels(
+    const Particles::ParticleAccessor<dim> &point,
+    const double                            time) const
+  {
+    if (finer_region && finer_region->contains(point.get_location()))
+      return true;
+    if (finer_plastic_strain_rate == 0. || !(time > last_record_time))
+      return false;
+    using Layout                    = PointLayout<dim>;
+    const ArrayView<const double> p = point.get_properties();
+    if (!plastic_law[static_cast<unsigned int>(p[Layout::material_id])])
+      return false;
+    const double growth = p[Layout::internal_variables] -
+                          p[points.plastic_strain_record_index()];
+    return growth > finer_plastic_strain_rate * (time - last_record_time);
+  }
+
+
+
+  template <int dim>
+  void
+  GridAdaptation<dim>::record_plastic_strain(const double time)
+  {
+    if (finer_plastic_strain_rate == 0.)
+      return;
+    using Layout = PointLayout<dim>;
+    const unsigned int record = points.plastic_strain_record_index();
+    for (auto &point : points.handler())
+      {
+        const ArrayView<double> p = point.get_properties();
+        if (plastic_law[static_cast<unsigned int>(p[Layout::material_id])])
+          p[record] = p[Layout::internal_variables];
+      }
+    last_record_time = time;
+  }
+
+
+
+  template <int dim>
+  bool
+  GridAdaptation<dim>::adapt(const Occupied &occupied,
+                             const Occupied &finer,
+                             bool            refine)
   {
     const auto &   triangulation = grid.get_triangulation();
     const MPI_Comm communicator  = grid.get_communicator();
     bool           changed       = false;
     // A check refines once material has come within Margin rings of a
-    // coarser cell; the rounds of a refinement, one level each, go on out
-    // to 2 Margin rings.
+    // coarser cell than it needs; the rounds of a refinement, one level
+    // each, go on out to 2 Margin rings.
     for (unsigned int round = 0;; ++round)
       {
-        const std::vector<unsigned int> ring = rings(occupied, 2 * margin);
+        const Rings        ring  = rings(occupied, finer, 2 * margin);
         const unsigned int reach = (refine || round > 0) ? 2 * margin : margin;
         bool coarse_nearby = false;
         for (const auto &cell : triangulation.active_cell_iterators())
           if (cell->is_locally_owned() &&
-              ring[cell->active_cell_index()] <= reach &&
-              cell->level() < finest_level)
+              cell->level() <
+                wanted_level(ring, cell->active_cell_index(), reach))
             coarse_nearby = true;
         refine = Utilities::MPI::logical_or(coarse_nearby, communicator);
         if (!refine)
           break;
         changed |= grid.adapt([&](const auto &cell) {
-          return ring[cell->active_cell_index()] <= 2 * margin &&
-                     cell->level() < finest_level ?
+          return cell->level() <
+                     wanted_level(ring, cell->active_cell_index(), 2 * margin) ?
                    1 :
                    0;
         });
@@ -151,15 +286,15 @@ namespace mpm
     // grid, then as far as they go: a change of the grid costs some steps,
     // and each bit of material that moves would otherwise free a family or
     // two of cells at every check.
-    const int base = grid.base_level();
-    for (unsigned int round = 0; round < levels; ++round)
+    const int coarsest = grid.base_level();
+    for (int round = coarsest; round < finest_level; ++round)
       {
-        const std::vector<unsigned int> ring = rings(occupied, 3 * margin);
-        const auto coarsens = [&](const auto &cell) {
-          return ring[cell->active_cell_index()] == beyond &&
-                 cell->level() > base;
+        const Rings ring     = rings(occupied, finer, 3 * margin);
+        const auto  coarsens = [&](const auto &cell) {
+          return cell->level() >
+                 wanted_level(ring, cell->active_cell_index(), 3 * margin);
         };
-        if (round == 0)
+        if (round == coarsest)
           {
             unsigned int n_candidates = 0;
             for (const auto &cell : triangulation.active_cell_iterators())
@@ -178,6 +313,21 @@ namespace mpm
           break;
       }
     return changed;
+  }
+
+
+
+  template <int dim>
+  typename GridAdaptation<dim>::Rings
+  GridAdaptation<dim>::rings(const Occupied &   occupied,
+                             const Occupied &   finer,
+                             const unsigned int n_rings) const
+  {
+    Rings result;
+    result.material = rings(occupied, n_rings);
+    if (finest_level > material_level)
+      result.finer = rings(finer, n_rings);
+    return result;
   }
 
 
@@ -236,6 +386,11 @@ namespace mpm
         if (cell->is_locally_owned())
           cells.push_back(cell->id().template to_binary<dim>());
     archive << cells;
+    // Written and read by the same scene (a continued run keeps the
+    // Adaptive grid entries), so the checkpoints of other scenes keep
+    // their layout.
+    if (finer_plastic_strain_rate > 0.)
+      archive << last_record_time;
   }
 
 
@@ -277,6 +432,8 @@ namespace mpm
          ++round)
       AssertThrow(static_cast<int>(round) < 2 * (finest_level + 1),
                   ExcInternalError());
+    if (finer_plastic_strain_rate > 0.)
+      archive >> last_record_time;
   }
 
 

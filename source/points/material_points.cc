@@ -54,18 +54,21 @@ namespace mpm
     const Grid<dim> &               grid,
     const std::vector<std::string> &internal_variable_names,
     const bool                      implicit_steps,
-    const bool                      point_loads)
+    const bool                      point_loads,
+    const bool                      plastic_strain_record)
     : grid(grid)
     , triangulation(grid.get_triangulation())
     , mapping(grid.get_mapping())
     , particle_handler(triangulation,
                        mapping,
                        Layout::n_properties(internal_variable_names.size()) +
-                         (implicit_steps ? dim : 0) + (point_loads ? dim : 0))
+                         (implicit_steps ? dim : 0) + (point_loads ? dim : 0) +
+                         (plastic_strain_record ? 1 : 0))
     , cell_cache(triangulation, mapping)
     , internal_names(internal_variable_names)
     , implicit_steps(implicit_steps)
     , point_loads(point_loads)
+    , plastic_strain_record(plastic_strain_record)
   {
     particle_handler.signals.particle_lost.connect(
       [this](const typename Particles::ParticleIterator<dim> &particle,
@@ -111,6 +114,8 @@ namespace mpm
     if (point_loads)
       for (unsigned int d = 0; d < dim; ++d)
         names.emplace_back("point_load");
+    if (plastic_strain_record)
+      names.emplace_back("plastic_strain_at_last_check");
     return names;
   }
 

@@ -5,12 +5,14 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/grid/cell_id.h>
 
+#include <mpm/base/shape.h>
 #include <mpm/grid/grid.h>
 #include <mpm/points/material_points.h>
 
 #include <boost/serialization/split_member.hpp>
 
 #include <functional>
+#include <memory>
 #include <vector>
 
 namespace mpm
@@ -33,14 +35,25 @@ namespace mpm
    * then the cells that share a vertex with them, and so on, n times;
    * ranks share the rings through the nodes on their boundary.
    *
-   * When: every step, if a point lies in a cell that is not at the finest
-   * level (the only check that a correct run needs: every point is
-   * projected from a finest cell); and every `Check interval` steps, if a
-   * cell within Margin rings is not at the finest level. The grid is then
+   * When: every step, if a point lies in a cell coarser than `Refinement
+   * levels` (the only check that a correct run needs: every point is
+   * projected from a cell of its level); and every `Check interval` steps,
+   * if a cell within Margin rings is coarser than it needs. The grid is then
    * refined out to 2 Margin rings, so that material must cross Margin
    * cells before the next refinement. The cells beyond 3 Margin rings
    * coarsen at a check once they make up a tenth of the grid. Each change
    * carries the points into their new cells.
+   *
+   * `Finer levels` refine some of the material further: the material whose
+   * points lie in `Finer region`, or whose equivalent plastic strain grew
+   * faster than `Finer plastic strain rate` since the last check (the
+   * flowing zone of a collapse, the shear band under a footing). Such
+   * cells, with their Margin rings, go to the finest level; the rest of
+   * the material stays at `Refinement levels`, and the vertices between
+   * the two hang as they do at the material's edge. The rate is measured
+   * at each check, over the time since the one before; each point keeps
+   * its plastic strain at the last check for that
+   * (MaterialPoints::plastic_strain_record_index()).
    */
   template <int dim>
   class GridAdaptation
@@ -54,21 +67,32 @@ namespace mpm
       const typename Triangulation<dim>::active_cell_iterator &)>;
 
     /**
+     * Whether a scene's points must keep their plastic strain at the last
+     * check (`Finer where` names the plastic strain rate), so that
+     * MaterialPoints gives them a slot for it.
+     */
+    static bool
+    measures_plastic_strain_rate(ParameterHandler &prm);
+
+    /**
      * Parse the `Adaptive grid` subsection (the handler is at top level).
      * `reserved`: the cells that material will fill later (the inflows'
-     * regions), kept refined as if they held points.
+     * regions), kept refined as if they held points. `plastic_law`: per
+     * material id, whether its points carry an equivalent plastic strain
+     * (the first internal variable).
      */
     GridAdaptation(ParameterHandler &         prm,
                    Grid<dim> &                grid,
-                   const MaterialPoints<dim> &points,
+                   MaterialPoints<dim> &      points,
                    const Occupied &           reserved,
+                   const std::vector<bool> &  plastic_law,
                    ConditionalOStream &       pcout);
 
-    /** Whether the grid adapts (Refinement levels > 0). */
+    /** Whether the grid adapts (Refinement levels or Finer levels > 0). */
     bool
     enabled() const
     {
-      return levels > 0;
+      return finest_level > static_cast<int>(grid.base_level());
     }
 
     /**
@@ -80,11 +104,11 @@ namespace mpm
     refine_around(const Occupied &occupied);
 
     /**
-     * At the top of a step: adapt to the points if due (see the class
-     * documentation). Returns whether the grid changed.
+     * At the top of a step, at `time`: adapt to the points if due (see the
+     * class documentation). Returns whether the grid changed.
      */
     bool
-    check(const unsigned int step);
+    check(const unsigned int step, const double time);
 
     /** How often check() changed the grid in this run. */
     unsigned int
@@ -112,6 +136,30 @@ namespace mpm
     static constexpr unsigned int beyond = static_cast<unsigned int>(-1);
 
     /**
+     * Per active cell index (owned cells only), the rings around the
+     * material and around the material that gets the Finer levels (empty
+     * without them).
+     */
+    struct Rings
+    {
+      std::vector<unsigned int> material;
+      std::vector<unsigned int> finer;
+    };
+
+    /** The level a cell needs when it lies within `reach` of the rings. */
+    int
+    wanted_level(const Rings &      rings,
+                 const unsigned int cell_index,
+                 const unsigned int reach) const
+    {
+      if (!rings.finer.empty() && rings.finer[cell_index] <= reach)
+        return finest_level;
+      if (rings.material[cell_index] <= reach)
+        return material_level;
+      return static_cast<int>(grid.base_level());
+    }
+
+    /**
      * Per active cell index (owned cells only): the ring of the cell, 0 for
      * the cells that `occupied` names, up to `n_rings`; `beyond` further
      * away.
@@ -119,13 +167,32 @@ namespace mpm
     std::vector<unsigned int>
     rings(const Occupied &occupied, const unsigned int n_rings) const;
 
+    Rings
+    rings(const Occupied &     occupied,
+          const Occupied &     finer,
+          const unsigned int   n_rings) const;
+
     /**
      * Refine out to 2 Margin rings, level by level, when `refine` or a cell
-     * within Margin rings is coarser than the finest; then coarsen beyond
-     * 3 Margin rings if due. Returns whether the grid changed.
+     * within Margin rings is coarser than it needs to be; then coarsen
+     * beyond 3 Margin rings if due. `finer`: the cells of the material that
+     * gets the Finer levels. Returns whether the grid changed.
      */
     bool
-    adapt(const Occupied &occupied, const bool refine);
+    adapt(const Occupied &occupied, const Occupied &finer, bool refine);
+
+    /**
+     * Whether a point gets the Finer levels at `time`: it lies in the
+     * Finer region, or its plastic strain grew faster than the Finer
+     * plastic strain rate since the last check.
+     */
+    bool
+    gets_finer_levels(const Particles::ParticleAccessor<dim> &point,
+                      const double                            time) const;
+
+    /** After a check: each point's plastic strain, for the next rate. */
+    void
+    record_plastic_strain(const double time);
 
     /** The points' cells. */
     bool
@@ -136,16 +203,25 @@ namespace mpm
     }
 
     Grid<dim> &                grid;
-    const MaterialPoints<dim> &points;
+    MaterialPoints<dim> &      points;
     const Occupied             reserved;
+    const std::vector<bool>    plastic_law;
     ConditionalOStream &       pcout;
 
     unsigned int levels;
     unsigned int margin;
     unsigned int interval;
-    /** base level + levels. */
-    int          finest_level;
-    unsigned int adaptations = 0;
+    /** base level + Refinement levels: every cell with material. */
+    int material_level;
+    /** material_level + Finer levels. */
+    int finest_level;
+    /** Empty unless Finer where names the region. */
+    std::unique_ptr<Shape<dim>> finer_region;
+    /** 0 unless Finer where names the plastic strain rate. */
+    double       finer_plastic_strain_rate = 0.;
+    /** When the points' plastic strains were recorded (saved). */
+    double       last_record_time = 0.;
+    unsigned int adaptations      = 0;
   };
 } // namespace mpm
 

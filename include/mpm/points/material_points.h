@@ -36,12 +36,15 @@ namespace mpm
      * `internal_variable_names`: the internal variables every point
      * carries, named for the output. After them, with `implicit_steps`
      * (the implicit schemes, whose points may move more than a cell in a
-     * step) an acceleration, and with `point_loads` a point load.
+     * step) an acceleration, with `point_loads` a point load, and with
+     * `plastic_strain_record` the plastic strain at the adaptive grid's
+     * last check (GridAdaptation).
      */
     MaterialPoints(const Grid<dim> &               grid,
                    const std::vector<std::string> &internal_variable_names,
                    const bool                      implicit_steps,
-                   const bool                      point_loads);
+                   const bool                      point_loads,
+                   const bool plastic_strain_record = false);
 
     /** `Boundary conditions/Outflow boundaries`. */
     static void
@@ -136,6 +139,15 @@ namespace mpm
              (implicit_steps ? dim : 0);
     }
 
+    /** Index of the plastic strain at the last check (if recorded). */
+    unsigned int
+    plastic_strain_record_index() const
+    {
+      Assert(plastic_strain_record, ExcInternalError());
+      return Layout::internal_variables + n_internal_variables() +
+             (implicit_steps ? dim : 0) + (point_loads ? dim : 0);
+    }
+
     /** Names of all properties, for output; vectors repeat their name. */
     std::vector<std::string>
     property_names() const;
@@ -198,6 +210,7 @@ namespace mpm
     const std::vector<std::string>  internal_names;
     const bool                      implicit_steps;
     const bool                      point_loads;
+    const bool                      plastic_strain_record;
 
     /** Filled by the particle_lost signal during a sort. */
     std::vector<Point<dim>> lost_positions;
