@@ -36,8 +36,7 @@ namespace mpm
       "et al. 2017), on a cloud of nodes that starts at the grid vertices "
       "of the cells holding material and moves with it, with moving least "
       "squares or local max-entropy shape functions (see Meshfree). The "
-      "meshfree methods run with the quasi-static and Newmark schemes, on "
-      "one rank.");
+      "meshfree methods run with the quasi-static and Newmark schemes.");
     MeshfreeBasis<dim>::declare_parameters(prm);
     Grid<dim>::declare_parameters(prm);
     GridBasis<dim>::declare_parameters(prm);
@@ -324,12 +323,6 @@ namespace mpm
         std::unique_ptr<MeshfreeBasis<dim>> meshfree;
         if (method != "MPM")
           {
-            // The cloud's supports cross rank boundaries freely; ghost
-            // nodes for them are not built yet (doc/architecture.md).
-            if (Utilities::MPI::n_mpi_processes(communicator) > 1)
-              throw InputError("Method = " + method + " runs on one rank "
-                               "only; run this scene without mpirun, or with "
-                               "Method = MPM.");
             meshfree = std::make_unique<MeshfreeBasis<dim>>(
               MeshfreeBasis<dim>::parse_parameters(
                 prm,

@@ -20,10 +20,11 @@ namespace mpm
     class CloudDataOut : public DataOutInterface<0, dim>
     {
     public:
-      explicit CloudDataOut(const NodeCloud<dim> &cloud)
+      /** `n_nodes`: how many of the cloud's nodes this rank writes. */
+      CloudDataOut(const NodeCloud<dim> &cloud, const unsigned int n_nodes)
       {
         const unsigned int n_data = 3 * dim;
-        for (unsigned int i = 0; i < cloud.size(); ++i)
+        for (unsigned int i = 0; i < n_nodes; ++i)
           {
             DataOutBase::Patch<0, dim> patch;
             patch.vertices[0] = cloud.positions[i];
@@ -213,7 +214,15 @@ namespace mpm
       }
 
     if (cloud != nullptr)
-      write_snapshot(CloudDataOut<dim>(*cloud), "nodes", time, cloud_records);
+      {
+        // Every rank holds the whole cloud; the first writes it.
+        const bool first_rank =
+          Utilities::MPI::this_mpi_process(communicator) == 0;
+        write_snapshot(CloudDataOut<dim>(*cloud, first_rank ? cloud->size() : 0),
+                       "nodes",
+                       time,
+                       cloud_records);
+      }
     ++counter;
   }
 

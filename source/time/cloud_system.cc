@@ -1,4 +1,5 @@
 #include <deal.II/base/mpi.h>
+#include <deal.II/lac/sparsity_tools.h>
 
 #include <mpm/base/input_error.h>
 #include <mpm/time/cloud_system.h>
@@ -75,6 +76,9 @@ namespace mpm
             nodal_mass[group.supports[0].nodes[k]] +=
               group.supports[0].N[k] *
               group.particles[0]->get_properties()[PointLayout<dim>::mass];
+        Utilities::MPI::sum(nodal_mass,
+                            this->points.get_communicator(),
+                            nodal_mass);
         for (unsigned int i = 0; i < cloud.size(); ++i)
           if (nodal_mass[i] < 0.)
             throw RunError("Node " + std::to_string(i) + " at (" +
@@ -84,12 +88,29 @@ namespace mpm
                              "Method = GMM-LME.",
                            false);
       }
-    // One rank holds the whole cloud (the simulator refuses more).
-    state.owned_dofs    = complete_index_set(cloud.size() * dim);
-    state.relevant_dofs = state.owned_dofs;
+    // Every rank holds the whole cloud (NodeCloud) and owns the unknowns
+    // of a block of its nodes.
+    const auto [first, last] = owned_nodes();
+    state.owned_dofs         = IndexSet(cloud.size() * dim);
+    state.owned_dofs.add_range(first * dim, last * dim);
+    state.relevant_dofs = complete_index_set(cloud.size() * dim);
     make_constraints(state);
     DynamicSparsityPattern dsp = sparsity_pattern(state);
     state.reinit(dsp, this->points.get_communicator());
+  }
+
+
+
+  template <int dim>
+  std::pair<unsigned int, unsigned int>
+  CloudSystem<dim>::owned_nodes() const
+  {
+    const MPI_Comm     comm    = this->points.get_communicator();
+    const std::size_t  n       = cloud.size();
+    const unsigned int rank    = Utilities::MPI::this_mpi_process(comm);
+    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
+    return {static_cast<unsigned int>(n * rank / n_ranks),
+            static_cast<unsigned int>(n * (rank + 1) / n_ranks)};
   }
 
 
@@ -108,7 +129,8 @@ namespace mpm
     const MPI_Comm comm = this->points.get_communicator();
     state.projected_velocity.reinit(state.owned_dofs, comm);
     state.projected_acceleration.reinit(state.owned_dofs, comm);
-    for (unsigned int i = 0; i < cloud.size(); ++i)
+    const auto [first, last] = owned_nodes();
+    for (unsigned int i = first; i < last; ++i)
       for (unsigned int a = 0; a < dim; ++a)
         {
           state.projected_velocity(i * dim + a)     = cloud.velocities[i][a];
@@ -131,6 +153,11 @@ namespace mpm
     for (const types::global_dof_index dof0 : state.unreached_node_dofs)
       for (unsigned int a = 0; a < dim; ++a)
         dsp.add(dof0 + a, dof0 + a);
+    // The rows of other ranks' nodes that this rank's points reach.
+    SparsityTools::distribute_sparsity_pattern(dsp,
+                                               state.owned_dofs,
+                                               this->points.get_communicator(),
+                                               state.relevant_dofs);
     return dsp;
   }
 
@@ -148,10 +175,12 @@ namespace mpm
       held[i] = cloud.held_components(i);
     // A node that no point reaches has no stiffness and no mass: it stays
     // where it is, which keeps the matrix regular.
-    std::vector<bool> reached(n_nodes, false);
+    // Each rank knows its own points' supports.
+    std::vector<unsigned int> reached(n_nodes, 0);
     for (const auto &group : state.groups)
       for (unsigned int k = 0; k < group.supports[0].n_nodes; ++k)
-        reached[group.supports[0].nodes[k]] = true;
+        reached[group.supports[0].nodes[k]] = 1;
+    Utilities::MPI::max(reached, this->points.get_communicator(), reached);
     state.unreached_node_dofs.clear();
     for (unsigned int i = 0; i < n_nodes; ++i)
       if (!reached[i])
@@ -274,7 +303,9 @@ namespace mpm
     // The cloud's outer nodes reach a wall before the material does,
     // so the nodes alone cannot tell; and a held node far from the
     // material would be a pivot that levers the body off the wall.
-    // The cloud lives on one rank.
+    // Every rank holds the whole cloud and the whole residual, so every
+    // rank releases the same pairs; the pairs that each rank's points
+    // engage are then applied everywhere in the order of the ranks.
     // A node may be held by several walls (at a corner); the active set
     // changes each (node, wall) pair at most once per step.
     const unsigned int n_walls = cloud.walls.size();
@@ -291,6 +322,7 @@ namespace mpm
                     cloud.walls[w].outward[a];
           released += cloud.held_by_walls.release_if_pulling(i, w, pull);
         }
+    std::vector<unsigned int> to_engage;
     for (const auto &group : state.groups)
       {
         const Support<dim> &support = group.supports[0];
@@ -313,12 +345,18 @@ namespace mpm
                 const unsigned int node = support.nodes[k];
                 const Point<dim> &x_node = cloud.positions[node];
                 if (c.offset - c.outward * x_node < reach &&
-                    x_node.distance(x_new) < cloud.spacing() &&
-                    cloud.held_by_walls.engage(node, w))
-                  ++engaged;
+                    x_node.distance(x_new) < cloud.spacing())
+                  {
+                    to_engage.push_back(node);
+                    to_engage.push_back(w);
+                  }
               }
           }
       }
+    for (const std::vector<unsigned int> &pairs :
+         Utilities::MPI::all_gather(comm, to_engage))
+      for (unsigned int k = 0; k < pairs.size(); k += 2)
+        engaged += cloud.held_by_walls.engage(pairs[k], pairs[k + 1]);
     if (released + engaged == 0)
       return false;
     pcout << "    walls: " << released << " node(s) released, " << engaged

@@ -141,13 +141,17 @@ namespace mpm
   {
     if (const MeshfreeBasis<dim> *meshfree = integrator.meshfree_basis())
       {
-        const auto &counts = meshfree->statistics();
+        // Each rank counts its own evaluations.
+        const auto &   counts = meshfree->statistics();
+        const MPI_Comm comm   = this->scene.points.get_communicator();
         this->scene.pcout << "meshfree: " << integrator.node_cloud()->size()
-                          << " nodes, " << counts.evaluations
+                          << " nodes, "
+                          << Utilities::MPI::sum(counts.evaluations, comm)
                           << " shape-function evaluations, "
-                          << counts.radius_growths
+                          << Utilities::MPI::sum(counts.radius_growths, comm)
                           << " of them with a larger radius (nodes added), "
-                          << counts.retries << " retries" << std::endl;
+                          << Utilities::MPI::sum(counts.retries, comm)
+                          << " retries" << std::endl;
       }
   }
 

@@ -28,6 +28,11 @@ namespace mpm
    * The grid's walls hold nodes where the material reaches them (see
    * Wall): the cloud is not tied to the grid, so a node that did not
    * start on a wall can come to one.
+   *
+   * On several ranks every rank holds the whole cloud, numbered by
+   * position: the nodes are about one per cell of material, few against
+   * the points, whose supports, assembly and unknowns the ranks split
+   * (CloudSystem). A support then never needs a node another rank has.
    */
   template <int dim>
   class NodeCloud
@@ -110,6 +115,39 @@ namespace mpm
     }
 
   private:
+    /** The entries of one node in the exchange between ranks. */
+    static constexpr unsigned int node_record_size = 2 + 2 * dim + dim * dim;
+
+    static void
+    pack_node(const Point<dim> &   x,
+              const Condition &    condition,
+              std::vector<double> &record);
+
+    static void
+    unpack_node(const double *record, Point<dim> &x, Condition &condition);
+
+    /**
+     * The wall of a boundary face (its outward direction from the cell's
+     * centre, and its centre), unless a wall of the same plane is known.
+     */
+    void
+    add_wall(const Tensor<1, dim> &                            outward,
+             const Point<dim> &                                face_center,
+             const typename DirichletConditions<dim>::WallKind kind);
+
+    /** Orders points by x, then y, then z: the nodes' order on several ranks. */
+    struct LexicographicLess
+    {
+      bool
+      operator()(const Point<dim> &a, const Point<dim> &b) const
+      {
+        for (unsigned int d = 0; d < dim; ++d)
+          if (a[d] != b[d])
+            return a[d] < b[d];
+        return false;
+      }
+    };
+
     double nodal_spacing;
   };
 } // namespace mpm

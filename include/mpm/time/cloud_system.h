@@ -13,6 +13,7 @@
 #include <mpm/time/newmark.h>
 
 #include <memory>
+#include <utility>
 #include <vector>
 
 namespace mpm
@@ -96,6 +97,10 @@ namespace mpm
     }
 
   private:
+    /** The nodes [first, last) whose unknowns this rank owns. */
+    std::pair<unsigned int, unsigned int>
+    owned_nodes() const;
+
     /** The pattern of the points' supports under the constraints. */
     DynamicSparsityPattern
     sparsity_pattern(const ImplicitState<dim> &state) const;
