@@ -88,29 +88,27 @@ namespace mpm
                              "Method = GMM-LME.",
                            false);
       }
-    // Every rank holds the whole cloud (NodeCloud) and owns the unknowns
-    // of a block of its nodes.
-    const auto [first, last] = owned_nodes();
-    state.owned_dofs         = IndexSet(cloud.size() * dim);
-    state.owned_dofs.add_range(first * dim, last * dim);
+    // Every rank holds the whole cloud (NodeCloud). A node's unknowns
+    // belong to the lowest rank whose points reach it, so that a rank
+    // writes into other ranks' rows only near the partition's boundary;
+    // a node that no point reaches belongs to rank 0.
+    const MPI_Comm     comm    = this->points.get_communicator();
+    const unsigned int rank    = Utilities::MPI::this_mpi_process(comm);
+    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
+    reaching_rank.assign(cloud.size(), n_ranks);
+    for (const auto &group : state.groups)
+      for (unsigned int k = 0; k < group.supports[0].n_nodes; ++k)
+        reaching_rank[group.supports[0].nodes[k]] = rank;
+    Utilities::MPI::min(reaching_rank, comm, reaching_rank);
+    state.owned_dofs = IndexSet(cloud.size() * dim);
+    for (unsigned int i = 0; i < cloud.size(); ++i)
+      if (reaching_rank[i] == rank || (reaching_rank[i] == n_ranks && rank == 0))
+        state.owned_dofs.add_range(i * dim, (i + 1) * dim);
+    state.owned_dofs.compress();
     state.relevant_dofs = complete_index_set(cloud.size() * dim);
     make_constraints(state);
     DynamicSparsityPattern dsp = sparsity_pattern(state);
-    state.reinit(dsp, this->points.get_communicator());
-  }
-
-
-
-  template <int dim>
-  std::pair<unsigned int, unsigned int>
-  CloudSystem<dim>::owned_nodes() const
-  {
-    const MPI_Comm     comm    = this->points.get_communicator();
-    const std::size_t  n       = cloud.size();
-    const unsigned int rank    = Utilities::MPI::this_mpi_process(comm);
-    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
-    return {static_cast<unsigned int>(n * rank / n_ranks),
-            static_cast<unsigned int>(n * (rank + 1) / n_ranks)};
+    state.reinit(dsp, comm);
   }
 
 
@@ -129,13 +127,12 @@ namespace mpm
     const MPI_Comm comm = this->points.get_communicator();
     state.projected_velocity.reinit(state.owned_dofs, comm);
     state.projected_acceleration.reinit(state.owned_dofs, comm);
-    const auto [first, last] = owned_nodes();
-    for (unsigned int i = first; i < last; ++i)
-      for (unsigned int a = 0; a < dim; ++a)
-        {
-          state.projected_velocity(i * dim + a)     = cloud.velocities[i][a];
-          state.projected_acceleration(i * dim + a) = cloud.accelerations[i][a];
-        }
+    for (const types::global_dof_index dof : state.owned_dofs)
+      {
+        const unsigned int i = dof / dim, a = dof % dim;
+        state.projected_velocity(dof)     = cloud.velocities[i][a];
+        state.projected_acceleration(dof) = cloud.accelerations[i][a];
+      }
     state.projected_velocity.compress(VectorOperation::insert);
     state.projected_acceleration.compress(VectorOperation::insert);
     state.constrain_initial_conditions();
@@ -175,15 +172,11 @@ namespace mpm
       held[i] = cloud.held_components(i);
     // A node that no point reaches has no stiffness and no mass: it stays
     // where it is, which keeps the matrix regular.
-    // Each rank knows its own points' supports.
-    std::vector<unsigned int> reached(n_nodes, 0);
-    for (const auto &group : state.groups)
-      for (unsigned int k = 0; k < group.supports[0].n_nodes; ++k)
-        reached[group.supports[0].nodes[k]] = 1;
-    Utilities::MPI::max(reached, this->points.get_communicator(), reached);
+    const unsigned int n_ranks =
+      Utilities::MPI::n_mpi_processes(this->points.get_communicator());
     state.unreached_node_dofs.clear();
     for (unsigned int i = 0; i < n_nodes; ++i)
-      if (!reached[i])
+      if (reaching_rank[i] == n_ranks)
         {
           for (unsigned int a = 0; a < dim; ++a)
             state.constraints.add_line(i * dim + a);

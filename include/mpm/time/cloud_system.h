@@ -13,7 +13,6 @@
 #include <mpm/time/newmark.h>
 
 #include <memory>
-#include <utility>
 #include <vector>
 
 namespace mpm
@@ -97,10 +96,6 @@ namespace mpm
     }
 
   private:
-    /** The nodes [first, last) whose unknowns this rank owns. */
-    std::pair<unsigned int, unsigned int>
-    owned_nodes() const;
-
     /** The pattern of the points' supports under the constraints. */
     DynamicSparsityPattern
     sparsity_pattern(const ImplicitState<dim> &state) const;
@@ -117,6 +112,11 @@ namespace mpm
 
     std::unique_ptr<MeshfreeBasis<dim>> meshfree;
     NodeCloud<dim>                      cloud;
+    /**
+     * Per node, the lowest rank whose points reach it in this step (the
+     * owner of its unknowns), or the number of ranks if none does.
+     */
+    std::vector<unsigned int> reaching_rank;
     const Newmark &                     newmark;
     ConditionalOStream &                pcout;
     TimerOutput &                       timer;
