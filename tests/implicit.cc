@@ -40,6 +40,8 @@
 // - a 3D column under its own weight (quasi-static, rollers, nu = 0)
 //   settles to the closed form of uniaxial strain, u(y) = -rho g (H y -
 //   y^2 / 2) / E, within the linear interpolation of the quadratic u;
+// - explicit-only Time stepping entries set in a Newmark run are named in
+//   a note on the screen (none without them);
 // - on one and two ranks alike.
 
 #include <deal.II/base/mpi.h>
@@ -351,6 +353,35 @@ main(int argc, char **argv)
                                                       "fewer than 5") +
                            " iterations checked)",
                          quadratic && checked >= 5);
+      }
+  }
+
+  // Entries of the explicit scheme set in an implicit run do nothing, and
+  // the screen says so (numbers compare by value: CFL 0.30 is the default).
+  {
+    std::string with, without;
+    mpm_tests::run_scene("../prm/rolling_disk.prm",
+                         "output-explicit-entries",
+                         {"Time stepping/End time=0.004",
+                          "Time stepping/Update scheme=USL",
+                          "Time stepping/PIC fraction=0.05",
+                          "Time stepping/CFL number=0.30"},
+                         &with);
+    mpm_tests::run_scene("../prm/rolling_disk.prm",
+                         "output-explicit-entries",
+                         {"Time stepping/End time=0.004"},
+                         &without);
+    if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+      {
+        const std::string note =
+          "mpm: note: Time stepping/Update scheme, PIC fraction apply to "
+          "the explicit scheme only; this Newmark run ignores them.";
+        deallog << note << std::endl;
+        mpm_tests::check("a Newmark run with explicit entries set names "
+                         "them on the screen",
+                         with.find(note) != std::string::npos);
+        mpm_tests::check("and one without them prints no note",
+                         without.find("mpm: note") == std::string::npos);
       }
   }
 }

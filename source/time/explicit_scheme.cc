@@ -61,6 +61,33 @@ namespace mpm
 
 
   template <int dim>
+  std::vector<std::string>
+  ExplicitScheme<dim>::entries_set(ParameterHandler &prm)
+  {
+    ParameterHandler defaults;
+    declare_parameters(defaults);
+    std::vector<std::string> set;
+    prm.enter_subsection("Time stepping");
+    defaults.enter_subsection("Time stepping");
+    for (const std::string entry : {"CFL number",
+                                    "Update scheme",
+                                    "PIC fraction",
+                                    "Dilatation rate",
+                                    "Velocity projection"})
+      {
+        const bool number = entry == "CFL number" || entry == "PIC fraction";
+        if (number ? prm.get_double(entry) != defaults.get_double(entry) :
+                     prm.get(entry) != defaults.get(entry))
+          set.push_back(entry);
+      }
+    defaults.leave_subsection();
+    prm.leave_subsection();
+    return set;
+  }
+
+
+
+  template <int dim>
   ExplicitScheme<dim>::ExplicitScheme(
     ParameterHandler &                         prm,
     const typename TimeScheme<dim>::Scene &scene)

@@ -1,4 +1,5 @@
 #include <mpm/base/input_error.h>
+#include <mpm/time/explicit_scheme.h>
 #include <mpm/time/implicit_scheme.h>
 
 #include <algorithm>
@@ -47,6 +48,19 @@ namespace mpm
     if (dynamic && !(this->fixed_time_step > 0.))
       throw InputError("Time stepping/Scheme = Newmark needs a Time step "
                        "above 0.");
+    const std::vector<std::string> ignored =
+      ExplicitScheme<dim>::entries_set(prm);
+    if (!ignored.empty())
+      {
+        scene.pcout << "mpm: note: Time stepping/";
+        for (unsigned int k = 0; k < ignored.size(); ++k)
+          scene.pcout << (k == 0 ? "" : ", ") << ignored[k];
+        scene.pcout << (ignored.size() == 1 ? " applies" : " apply")
+                    << " to the explicit scheme only; this "
+                    << (dynamic ? "Newmark" : "quasi-static")
+                    << " run ignores " << (ignored.size() == 1 ? "it" : "them")
+                    << "." << std::endl;
+      }
     next_step = step_size();
   }
 

@@ -6,6 +6,7 @@
 
 #include <limits>
 #include <string>
+#include <vector>
 
 namespace mpm
 {
@@ -23,6 +24,13 @@ namespace mpm
     /** `CFL number`, `Update scheme` and `PIC fraction`. */
     static void
     declare_parameters(ParameterHandler &prm);
+
+    /**
+     * The entries of declare_parameters() that `prm` (at top level) sets to
+     * other values than their defaults: what an implicit run ignores.
+     */
+    static std::vector<std::string>
+    entries_set(ParameterHandler &prm);
 
     ExplicitScheme(ParameterHandler &                         prm,
                    const typename TimeScheme<dim>::Scene &scene);
