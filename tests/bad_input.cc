@@ -353,9 +353,11 @@ main(int argc, char **argv)
   run_case("finer levels by plastic flow in an elastic body",
            with({"Adaptive grid/Finer levels=1",
                  "Adaptive grid/Finer where=plastic flow"}));
-  run_case("finer levels by plastic flow with no periodic check",
+  run_case("finer levels in a region with no periodic check",
            with({"Adaptive grid/Finer levels=1",
-                 "Adaptive grid/Finer where=plastic flow",
+                 "Adaptive grid/Finer where=region",
+                 "Adaptive grid/Finer region/Lower corner=0, 0",
+                 "Adaptive grid/Finer region/Upper corner=1, 1",
                  "Adaptive grid/Check interval=0"}));
   {
     // A run that leaves a checkpoint (at its end), to continue wrongly.

@@ -204,9 +204,10 @@ namespace
   /**
    * A checkpoint of a scene whose saved entries lack `entry`, as one
    * written before mpm declared it: this rank's file is rewritten without
-   * it (its layout: format version, ranks, the scene's entries, the state
-   * and its checksum, which covers the state only). Returns the exit code
-   * of the continued run.
+   * it, and with the names of empty entries as older checkpoints kept them
+   * (the file's layout: format version, ranks, the scene's entries, the
+   * state and its checksum, which covers the state only). Returns the exit
+   * code of the continued run.
    */
   int
   continue_without_entry(const std::string &             scene,
@@ -237,6 +238,12 @@ namespace
       archive >> version >> n_ranks >> entries >> state >> checksum;
     }
     const bool had_entry = entries.erase(entry) == 1;
+    // Written before mpm parsed the PRM form, a checkpoint kept an entry
+    // with an empty value as its padded name followed by '='.
+    std::map<std::string, std::string> older;
+    for (const auto &[name, value] : entries)
+      older[value.empty() ? name + "     =" : name] = value;
+    entries = older;
     {
       std::ofstream                   out(file, std::ios::binary);
       boost::archive::binary_oarchive archive(out);

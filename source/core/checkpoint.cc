@@ -251,7 +251,14 @@ namespace mpm
                        std::to_string(contents.n_ranks) +
                        " rank(s); continue it on as many.");
 
-    const auto &saved_scene      = contents.scene;
+    // Checkpoints written before the PRM form was parsed here kept an
+    // entry whose value is empty under its name padded and followed by
+    // '=' (the short form prints no ' = ' for it).
+    std::map<std::string, std::string> saved_scene;
+    for (const auto &[name, value] : contents.scene)
+      saved_scene[name.back() == '=' ?
+                    Utilities::trim(name.substr(0, name.size() - 1)) :
+                    name] = value;
     auto        union_of_entries = saved_scene;
     union_of_entries.insert(scene.begin(), scene.end());
     std::string changed;

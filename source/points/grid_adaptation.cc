@@ -40,9 +40,10 @@ namespace mpm
       "new cell).");
     prm.declare_entry(
       "Check interval", "10", Patterns::Integer(0),
-      "Steps between two checks of the margin (and of cells to coarsen); "
-      "0: only when a point enters a cell that is not at the finest "
-      "level, which is checked at every step. A check costs 3 Margin "
+      "Steps between two checks of the margin (and of cells to coarsen, "
+      "and of the material that gets Finer levels); "
+      "0: only when a point enters a cell coarser than Refinement "
+      "levels, which is checked at every step. A check costs 3 Margin "
       "exchanges of the nodes on the ranks' boundaries.");
     prm.declare_entry(
       "Finer levels", "0", Patterns::Integer(0, 10),
@@ -56,8 +57,8 @@ namespace mpm
       "Which material gets the Finer levels: 'region', the points that "
       "lie in the shape of the subsection Finer region; 'plastic flow', "
       "the points whose equivalent plastic strain grew faster than Finer "
-      "plastic strain rate since the last check (measured at every check, "
-      "so Check interval must be above 0); or both, comma-separated.");
+      "plastic strain rate since the last check; or both, comma-separated. "
+      "Both are found at the periodic checks (Check interval above 0).");
     prm.declare_entry(
       "Finer plastic strain rate", "1", Patterns::Double(0.),
       "(1/s) With Finer where = plastic flow: the rate of the equivalent "
@@ -112,6 +113,11 @@ namespace mpm
                          "(region, plastic flow, or both)." :
                          "Adaptive grid/Finer where = " + where +
                            " needs Finer levels > 0.");
+    if ((by_region || by_flow) && interval == 0)
+      throw InputError("Adaptive grid/Finer where: the material that gets "
+                       "the Finer levels is found at the periodic checks "
+                       "(and the plastic strain rate measured between "
+                       "them), so Check interval must be above 0.");
     if (by_region)
       {
         prm.enter_subsection("Finer region");
@@ -126,10 +132,6 @@ namespace mpm
         if (!(finer_plastic_strain_rate > 0.))
           throw InputError("Adaptive grid/Finer plastic strain rate must be "
                            "positive with Finer where = plastic flow.");
-        if (interval == 0)
-          throw InputError("Adaptive grid/Finer where = plastic flow "
-                           "measures the rate between checks, so Check "
-                           "interval must be above 0.");
         if (std::none_of(plastic_law.begin(),
                          plastic_law.end(),
                          [](const bool plastic) { return plastic; }))
@@ -178,9 +180,15 @@ namespace mpm
     const Occupied holding_material = [this](const auto &cell) {
       return holds_points(cell) || reserved(cell);
     };
+    // An inflow's region in the Finer region gets the finest cells before
+    // its releases, as a body there does at the start.
     const Occupied finer = [this, time](const auto &cell) {
       if (finest_level == material_level)
         return false;
+      if (finer_region && reserved(cell) &&
+          finer_region->signed_distance(cell->center()) <=
+            0.5 * cell->diameter())
+        return true;
       for (const auto &point : points.handler().particles_in_cell(cell))
         if (gets_finer_levels(point, time))
           return true;

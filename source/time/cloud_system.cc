@@ -35,6 +35,9 @@ namespace mpm
   CloudSystem<dim>::setup(ImplicitState<dim> &state)
   {
     cloud.held_by_walls.begin_step();
+    // A point whose shape functions cannot be built stops the run on
+    // every rank, with its message.
+    std::string failure;
     {
       TimerOutput::Scope t(timer, "meshfree shape functions");
       meshfree->reinit(cloud.positions);
@@ -53,10 +56,9 @@ namespace mpm
             }
           catch (const RunError &e)
             {
-              throw RunError("Material point " +
-                               std::to_string(particle->get_id()) + ": " +
-                               e.what(),
-                             false);
+              failure = "Material point " +
+                        std::to_string(particle->get_id()) + ": " + e.what();
+              break;
             }
           group.dofs.resize(support.n_nodes * dim);
           for (unsigned int i = 0; i < support.n_nodes; ++i)
@@ -65,6 +67,11 @@ namespace mpm
         }
       state.groups.resize(n_groups);
     }
+    const MPI_Comm comm = this->points.get_communicator();
+    if (Utilities::MPI::logical_or(!failure.empty(), comm))
+      for (const std::string &message : Utilities::MPI::all_gather(comm, failure))
+        if (!message.empty())
+          throw RunError(message, false);
     // MLS shape functions can be negative: a lumped nodal mass must still
     // be positive.
     if (state.dynamic && newmark.lumped_mass &&
@@ -76,9 +83,7 @@ namespace mpm
             nodal_mass[group.supports[0].nodes[k]] +=
               group.supports[0].N[k] *
               group.particles[0]->get_properties()[PointLayout<dim>::mass];
-        Utilities::MPI::sum(nodal_mass,
-                            this->points.get_communicator(),
-                            nodal_mass);
+        Utilities::MPI::sum(nodal_mass, comm, nodal_mass);
         for (unsigned int i = 0; i < cloud.size(); ++i)
           if (nodal_mass[i] < 0.)
             throw RunError("Node " + std::to_string(i) + " at (" +
@@ -92,7 +97,6 @@ namespace mpm
     // belong to the lowest rank whose points reach it, so that a rank
     // writes into other ranks' rows only near the partition's boundary;
     // a node that no point reaches belongs to rank 0.
-    const MPI_Comm     comm    = this->points.get_communicator();
     const unsigned int rank    = Utilities::MPI::this_mpi_process(comm);
     const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
     reaching_rank.assign(cloud.size(), n_ranks);
@@ -181,7 +185,9 @@ namespace mpm
           for (unsigned int a = 0; a < dim; ++a)
             state.constraints.add_line(i * dim + a);
           held[i].fill(false);
-          state.unreached_node_dofs.push_back(i * dim);
+          // The owner alone puts the unit on its diagonal.
+          if (state.owned_dofs.is_element(i * dim))
+            state.unreached_node_dofs.push_back(i * dim);
         }
 
     if (meshfree->kind() == MeshfreeBasis<dim>::Kind::lme)
@@ -198,6 +204,8 @@ namespace mpm
     // With D the held nodes and F the others, A_DD u_D = -A_DF u_F, so
     // u_D = C u_F with C = -A_DD^-1 A_DF, a dense solve of the size of D.
     // The shape functions at every node that holds a component.
+    // Every rank builds them alike; the first counts the evaluations.
+    const auto counts_before = meshfree->statistics();
     std::map<unsigned int, Support<dim>> support_at;
     for (unsigned int i = 0; i < n_nodes; ++i)
       if (std::find(held[i].begin(), held[i].end(), true) != held[i].end())
@@ -211,6 +219,8 @@ namespace mpm
                              std::to_string(i) + ": " + e.what(),
                            false);
           }
+    if (Utilities::MPI::this_mpi_process(this->points.get_communicator()) != 0)
+      meshfree->set_statistics(counts_before);
     for (unsigned int a = 0; a < dim; ++a)
       {
         std::vector<unsigned int>           held_nodes;

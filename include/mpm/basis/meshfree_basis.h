@@ -119,6 +119,13 @@ namespace mpm
       return counts;
     }
 
+    /** Put the counts back (evaluations that another rank counts). */
+    void
+    set_statistics(const Statistics &statistics)
+    {
+      counts = statistics;
+    }
+
     /** The counts, for Checkpoint: a continued run reports the whole run. */
     template <class Archive>
     void
