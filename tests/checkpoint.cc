@@ -165,6 +165,25 @@ namespace
   }
 
   /**
+   * Run `scene` with `settings` in a fresh `directory` until it stops
+   * after its first step, with a checkpoint; returns the exit code.
+   */
+  int
+  run_first_step(const std::string &             scene,
+                 const std::string &             directory,
+                 const std::vector<std::string> &settings)
+  {
+    if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+      std::filesystem::remove_all(directory);
+    MPI_Barrier(MPI_COMM_WORLD);
+    std::vector<std::string> first = settings;
+    first.insert(first.end(),
+                 stop_after_one_step.begin(),
+                 stop_after_one_step.end());
+    return run(scene, directory, first, false);
+  }
+
+  /**
    * A run stopped after one step and continued with another step entry (as
    * after a run that went unstable): the steps after the restart have the
    * sizes `expected_steps` lists (the first is the step before the stop),
@@ -177,18 +196,11 @@ namespace
                 const std::string &             changed_entry,
                 const std::vector<double> &     expected_steps)
   {
-    const std::string directory = "output-changed-steps";
-    if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
-      std::filesystem::remove_all(directory);
-    MPI_Barrier(MPI_COMM_WORLD);
-    std::vector<std::string> first = settings;
-    first.insert(first.end(),
-                 stop_after_one_step.begin(),
-                 stop_after_one_step.end());
-    std::vector<std::string> second = settings;
+    const std::string        directory = "output-changed-steps";
+    std::vector<std::string> second    = settings;
     second.push_back(changed_entry);
     deallog << "--- " << title << std::endl;
-    const int first_code  = run(scene, directory, first, false);
+    const int first_code  = run_first_step(scene, directory, settings);
     const int second_code = run(scene, directory, second, true);
     auto      csv = mpm_tests::read_csv(directory + "/time_series.csv");
     // The first row is the state at t = 0.
@@ -215,14 +227,7 @@ namespace
                          const std::string &             entry)
   {
     const std::string directory = "output-older-checkpoint";
-    if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
-      std::filesystem::remove_all(directory);
-    MPI_Barrier(MPI_COMM_WORLD);
-    std::vector<std::string> first = settings;
-    first.insert(first.end(),
-                 stop_after_one_step.begin(),
-                 stop_after_one_step.end());
-    if (run(scene, directory, first, false) != 0)
+    if (run_first_step(scene, directory, settings) != 0)
       return -1;
     const std::string file =
       directory + "/checkpoint/rank-" +
