@@ -21,7 +21,8 @@
 //   in one go to the last digit;
 // - Finer levels on the same collapse: a Finer region over the whole box
 //   gives the time series of the grid refined once more everywhere (and
-//   so of the uniform grid); finer levels where the material flows end
+//   so of the uniform grid); one over the column's toe (x > 0.15 m), and
+//   finer levels where the material flows, end
 //   with more cells than the grid refined once and fewer than the one
 //   refined twice, and a run continued from a checkpoint repeats the run
 //   made in one go to the last digit;
@@ -332,12 +333,21 @@ check_finer_levels(const std::string &                   scene,
                  "Adaptive grid/Finer where=region",
                  "Adaptive grid/Finer region/Lower corner=-1, -1",
                  "Adaptive grid/Finer region/Upper corner=1, 1"});
+  std::vector<std::string> toe = once;
+  toe.insert(toe.end(),
+             {"Adaptive grid/Finer levels=1",
+              "Adaptive grid/Finer where=region",
+              "Adaptive grid/Finer region/Lower corner=0.15, -1",
+              "Adaptive grid/Finer region/Upper corner=1, 1"});
   flowing.insert(flowing.end(),
                  {"Adaptive grid/Finer levels=1",
                   "Adaptive grid/Finer where=plastic flow",
                   "Adaptive grid/Finer plastic strain rate=2"});
-  std::string once_screen, region_screen, flowing_screen, first_screen;
+  std::string once_screen, region_screen, flowing_screen, first_screen,
+    toe_screen;
   mpm_tests::run_scene(scene, "output-once", once, &once_screen);
+  auto at_toe =
+    mpm_tests::run_scene(scene, "output-finer-toe", toe, &toe_screen);
   auto everywhere = mpm_tests::run_scene(
     scene, "output-finer-region", region, &region_screen);
   auto flow = mpm_tests::run_scene(
@@ -357,10 +367,20 @@ check_finer_levels(const std::string &                   scene,
                cells_flow = number_after(
                  flowing_screen.substr(flowing_screen.find(at_end)), at_end),
                cells_finest =
-                 number_after(screen.substr(screen.find(at_end)), at_end);
+                 number_after(screen.substr(screen.find(at_end)), at_end),
+               cells_toe = number_after(
+                 toe_screen.substr(toe_screen.find(at_end)), at_end);
   deallog << "cells at the end: " << cells_once << " refined once, "
           << cells_flow << " with the flowing material once more, "
+          << cells_toe << " with the material beyond x = 0.15 m once more, "
           << cells_finest << " refined twice" << std::endl;
+  mpm_tests::check("a Finer region over part of the column (x > 0.15 m): "
+                   "more cells than the grid refined once at the end, fewer "
+                   "than the one refined twice, and its mass kept to 1e-12",
+                   cells_once < cells_toe && cells_toe < cells_finest &&
+                     std::abs(at_toe["mass"].back() /
+                                at_toe["mass"].front() -
+                              1.) < 1e-12);
   mpm_tests::check("a Finer region over the whole box gives the time series "
                    "of the grid refined twice (and of the uniform grid) to "
                    "1e-9 of each column's largest value",
