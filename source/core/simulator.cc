@@ -240,8 +240,7 @@ namespace mpm
     // they are seeded, so that the points fill the finest cells; the
     // inflows' regions stay refined for the whole run.
     const auto near_body = [](const Body<dim> &body, const auto &cell) {
-      return body.region().signed_distance(cell->center()) <=
-             0.5 * cell->diameter();
+      return body.region().reaches_cell(cell);
     };
     std::vector<bool> plastic_law;
     for (const auto &material : materials)

@@ -155,9 +155,7 @@ namespace mpm
     // Before the points: the material near the Finer region gets the
     // finest cells, so that its points are seeded into them.
     const Occupied near_finer_region = [&](const auto &cell) {
-      return finer_region && occupied(cell) &&
-             finer_region->signed_distance(cell->center()) <=
-               0.5 * cell->diameter();
+      return finer_region && occupied(cell) && finer_region->reaches_cell(cell);
     };
     adapt(occupied, near_finer_region, true);
     pcout << "mpm: adaptive grid, "
@@ -183,11 +181,7 @@ namespace mpm
     // An inflow's region in the Finer region gets the finest cells before
     // its releases, as a body there does at the start.
     const Occupied finer = [this, time](const auto &cell) {
-      if (finest_level == material_level)
-        return false;
-      if (finer_region && reserved(cell) &&
-          finer_region->signed_distance(cell->center()) <=
-            0.5 * cell->diameter())
+      if (finer_region && reserved(cell) && finer_region->reaches_cell(cell))
         return true;
       for (const auto &point : points.handler().particles_in_cell(cell))
         if (gets_finer_levels(point, time))

@@ -52,10 +52,8 @@ namespace mpm
       ExplicitScheme<dim>::entries_set(prm);
     if (!ignored.empty())
       {
-        scene.pcout << "mpm: note: Time stepping/";
-        for (unsigned int k = 0; k < ignored.size(); ++k)
-          scene.pcout << (k == 0 ? "" : ", ") << ignored[k];
-        scene.pcout << (ignored.size() == 1 ? " applies" : " apply")
+        scene.pcout << "mpm: note: Time stepping/" << comma_separated(ignored)
+                    << (ignored.size() == 1 ? " applies" : " apply")
                     << " to the explicit scheme only; this "
                     << (dynamic ? "Newmark" : "quasi-static")
                     << " run ignores " << (ignored.size() == 1 ? "it" : "them")

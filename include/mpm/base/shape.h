@@ -37,6 +37,18 @@ namespace mpm
     /** The outward unit normal of the surface point nearest to x. */
     virtual Tensor<1, dim>
     outward_normal(const Point<dim> &x) const = 0;
+
+    /**
+     * Whether the shape comes within half a grid cell's diameter of the
+     * cell's centre: the cells that a body's or a region's refinement
+     * counts as its own.
+     */
+    template <class CellIterator>
+    bool
+    reaches_cell(const CellIterator &cell) const
+    {
+      return signed_distance(cell->center()) <= 0.5 * cell->diameter();
+    }
   };
 
 
