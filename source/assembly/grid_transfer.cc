@@ -133,7 +133,7 @@ namespace mpm
             m > 0. ? v[NodalLayout::velocity + d] / m : 0.;
       }
     if (corrected_velocity)
-      correct_nodal_velocity();
+      correct_towards_consistent_mass(NodalLayout::velocity, 1., false);
     if (constrain)
       for (const unsigned int node : nodes.nodes_to_solve())
         for (const NodalCondition<dim> *condition : conditions)
@@ -147,51 +147,30 @@ namespace mpm
 
   template <int dim>
   void
-  GridTransfer<dim>::correct_nodal_velocity()
+  GridTransfer<dim>::compute_nodal_acceleration(const double dt)
   {
-    // The lumped velocities are read at the points while the correction
-    // is summed into the same components, and a projection clears the
-    // ghost nodes: keep them aside.
     const std::vector<unsigned int> &solve_nodes = nodes.nodes_to_solve();
-    unsigned int                     n_nodes     = 0;
-    for (const unsigned int node : solve_nodes)
-      n_nodes = std::max(n_nodes, node + 1);
-    if (lumped_velocity.size() < n_nodes * dim)
-      lumped_velocity.resize(n_nodes * dim);
-    for (const unsigned int node : solve_nodes)
-      for (unsigned int d = 0; d < dim; ++d)
-        lumped_velocity[node * dim + d] =
-          nodes.values_of(node)[NodalLayout::velocity + d];
-
-    nodes.begin_projection(NodalLayout::velocity, dim);
-    for_each_point([&](const auto &particle, const Support<dim> &support) {
-      const ArrayView<const double> p = particle->get_properties();
-      double                        residual[dim];
-      for (unsigned int d = 0; d < dim; ++d)
-        residual[d] = p[Layout::velocity + d];
-      for (unsigned int i = 0; i < support.n_nodes; ++i)
-        for (unsigned int d = 0; d < dim; ++d)
-          residual[d] -=
-            support.N[i] * lumped_velocity[support.nodes[i] * dim + d];
-      const double m = p[Layout::mass];
-      for (unsigned int i = 0; i < support.n_nodes; ++i)
-        {
-          double *v = nodes.values_of(support.nodes[i]) + NodalLayout::velocity;
-          for (unsigned int d = 0; d < dim; ++d)
-            v[d] += support.N[i] * m * residual[d];
-        }
-    });
-    nodes.finish_projection();
-
     for (const unsigned int node : solve_nodes)
       {
         double *     v = nodes.values_of(node);
         const double m = v[NodalLayout::mass];
         for (unsigned int d = 0; d < dim; ++d)
-          v[NodalLayout::velocity + d] =
-            m > 0. ? lumped_velocity[node * dim + d] +
-                       v[NodalLayout::velocity + d] / m :
-                     0.;
+          v[NodalLayout::force + d] =
+            m > 0. ? v[NodalLayout::force + d] / m : 0.;
+        apply_explicit_conditions(node, dt);
+      }
+    if (blended_mass)
+      {
+        correct_towards_consistent_mass(NodalLayout::force, 0.5, true);
+        // The end velocities follow the accelerations' changes (the
+        // accelerations before them are still aside).
+        for (const unsigned int node : solve_nodes)
+          {
+            double *v = nodes.values_of(node);
+            for (unsigned int d = 0; d < dim; ++d)
+              v[NodalLayout::velocity + d] +=
+                dt * (v[NodalLayout::force + d] - lumped_values[node * dim + d]);
+          }
       }
   }
 
@@ -199,35 +178,90 @@ namespace mpm
 
   template <int dim>
   void
-  GridTransfer<dim>::compute_nodal_acceleration(const double dt)
+  GridTransfer<dim>::apply_explicit_conditions(const unsigned int node,
+                                               const double       dt)
   {
-    for (const unsigned int node : nodes.nodes_to_solve())
+    double *     v        = nodes.values_of(node);
+    const double m        = v[NodalLayout::mass];
+    double *     a        = v + NodalLayout::force;
+    double *     velocity = v + NodalLayout::velocity;
+    double       start[dim];
+    for (unsigned int d = 0; d < dim; ++d)
+      start[d] = velocity[d];
+    bool constrained = false;
+    for (const NodalCondition<dim> *condition : conditions)
+      if (condition->acts_on(node))
+        {
+          condition->constrain_explicit(node, m, velocity, a, dt, time);
+          constrained = true;
+        }
+    for (unsigned int d = 0; d < dim; ++d)
       {
-        double *     v        = nodes.values_of(node);
-        const double m        = v[NodalLayout::mass];
-        double *     a        = v + NodalLayout::force;
-        double *     velocity = v + NodalLayout::velocity;
+        // a takes the conditions' reaction impulse (velocity - start)
+        // / dt, so that v_start + dt a is the end velocity too.
+        const double end = velocity[d] + dt * a[d];
+        if (constrained)
+          a[d] += (velocity[d] - start[d]) / dt;
+        velocity[d] = end;
+      }
+  }
+
+
+
+  template <int dim>
+  void
+  GridTransfer<dim>::correct_towards_consistent_mass(
+    const unsigned int component,
+    const double       factor,
+    const bool         constrained)
+  {
+    // The field is read at the points while M_C w is summed into the same
+    // components, and a projection clears the ghost nodes: keep it aside.
+    const std::vector<unsigned int> &solve_nodes = nodes.nodes_to_solve();
+    unsigned int                     n_nodes     = 0;
+    for (const unsigned int node : solve_nodes)
+      n_nodes = std::max(n_nodes, node + 1);
+    if (lumped_values.size() < n_nodes * dim)
+      lumped_values.resize(n_nodes * dim);
+    for (const unsigned int node : solve_nodes)
+      for (unsigned int d = 0; d < dim; ++d)
+        lumped_values[node * dim + d] = nodes.values_of(node)[component + d];
+
+    nodes.begin_projection(component, dim);
+    for_each_point([&](const auto &particle, const Support<dim> &support) {
+      const double m       = particle->get_properties()[Layout::mass];
+      double       mw[dim] = {};
+      for (unsigned int i = 0; i < support.n_nodes; ++i)
         for (unsigned int d = 0; d < dim; ++d)
-          a[d] = m > 0. ? a[d] / m : 0.;
-        double start[dim];
-        for (unsigned int d = 0; d < dim; ++d)
-          start[d] = velocity[d];
-        bool constrained = false;
-        for (const NodalCondition<dim> *condition : conditions)
-          if (condition->acts_on(node))
-            {
-              condition->constrain_explicit(node, m, velocity, a, dt, time);
-              constrained = true;
-            }
-        for (unsigned int d = 0; d < dim; ++d)
+          mw[d] += m * support.N[i] * lumped_values[support.nodes[i] * dim + d];
+      for (unsigned int i = 0; i < support.n_nodes; ++i)
+        {
+          double *w = nodes.values_of(support.nodes[i]) + component;
+          for (unsigned int d = 0; d < dim; ++d)
+            w[d] += support.N[i] * mw[d];
+        }
+    });
+    nodes.finish_projection();
+
+    for (const unsigned int node : solve_nodes)
+      {
+        double *     w = nodes.values_of(node) + component;
+        const double m = nodes.values_of(node)[NodalLayout::mass];
+        if (!(m > 0.))
           {
-            // a takes the conditions' reaction impulse (velocity - start)
-            // / dt, so that v_start + dt a is the end velocity too.
-            const double end = velocity[d] + dt * a[d];
-            if (constrained)
-              a[d] += (velocity[d] - start[d]) / dt;
-            velocity[d] = end;
+            for (unsigned int d = 0; d < dim; ++d)
+              w[d] = 0.;
+            continue;
           }
+        double change[dim];
+        for (unsigned int d = 0; d < dim; ++d)
+          change[d] = factor * (lumped_values[node * dim + d] - w[d] / m);
+        if (constrained)
+          for (const NodalCondition<dim> *condition : conditions)
+            if (condition->acts_on(node))
+              condition->constrain_change(node, change);
+        for (unsigned int d = 0; d < dim; ++d)
+          w[d] = lumped_values[node * dim + d] + change[d];
       }
   }
 

@@ -79,12 +79,23 @@ namespace mpm
 
     /**
      * From now on, compute_nodal_velocity() corrects the lumped velocity
-     * projection towards the consistent one (correct_nodal_velocity()).
+     * projection towards the consistent one
+     * (correct_towards_consistent_mass()).
      */
     void
     enable_corrected_velocity_projection()
     {
       corrected_velocity = true;
+    }
+
+    /**
+     * From now on, compute_nodal_acceleration() takes half a Jacobi step
+     * from the lumped mass towards the consistent one (the blended mass).
+     */
+    void
+    enable_blended_mass()
+    {
+      blended_mass = true;
     }
 
     /**
@@ -144,7 +155,8 @@ namespace mpm
     /**
      * a = f / m on every node, corrected by the nodal conditions so that
      * v + dt a meets them, where v is the nodal velocity as it stands
-     * (constrained or not); then v += dt a.
+     * (constrained or not); then v += dt a. With enable_blended_mass(),
+     * the free nodes' a then moves towards the consistent mass's.
      */
     void
     compute_nodal_acceleration(const double dt);
@@ -195,20 +207,41 @@ namespace mpm
 
   private:
     /**
-     * One Jacobi step from the lumped projection v = M_L^-1 p towards the
-     * consistent one, M_C v = p with M_C = sum m_p N_p N_p^T:
-     * v += M_L^-1 sum_p m_p N_p (v_p - v(x_p)). The point velocities are
-     * themselves sums of nodal updates, so what a step hands the next one
-     * passes through P N: M_L^-1 M_C for the lumped projection, whose
-     * eigenvalue 1 - e, e = (kh)^2 / 6 in 1D, for a smooth mode of wave
-     * number k lengthens periods by (kh)^2 / 12, three times the lumped
-     * mass's own (kh)^2 / 24. After the step P N = (2 - M_L^-1 M_C)
-     * M_L^-1 M_C, with eigenvalue 1 - e^2. No eigenvalue exceeds 1 (those
-     * of M_L^-1 M_C lie in [0, 1]), so the stable time step stays; the
-     * sum of m_p (v_p - v(x_p)) is zero, so the momentum is kept.
+     * The nodal field w in `dim` components from `component` on takes the
+     * step w += factor (w - M_L^-1 M_C w), M_C = sum m_p N_p N_p^T the
+     * consistent mass, on every node; if `constrained`, each node's change
+     * then passes through the conditions on it, as in a consistent solve
+     * with what they hold held (NodalCondition::constrain_change()). factor 1 is one Jacobi step from a lumped solve
+     * M_L w = r towards M_C w = r; for a smooth mode of wave number k on a
+     * uniform 1D grid M_L^-1 M_C has the eigenvalue 1 - e, e = (kh)^2 / 6.
+     * - Velocity (factor 1, corrected projection, before the conditions: a
+     *   wall node's lumped velocity is a true mean of its points' ones):
+     *   the point velocities are
+     *   sums of nodal updates, so what a step hands the next passes through
+     *   P N = M_L^-1 M_C, which lengthens periods by (kh)^2 / 12, three
+     *   times the lumped mass's own (kh)^2 / 24; after the step P N has the
+     *   eigenvalue 1 - e^2.
+     * - Acceleration (factor 1/2, blended mass, after the conditions: a
+     *   held node's lumped acceleration carries the wall's reaction):
+     *   a = (1 + e / 2) M_L^-1 f
+     *   is the solve with the mean of the lumped and the consistent mass to
+     *   O(e^2), whose dispersion cancels to O((kh)^4).
+     * The eigenvalues of M_L^-1 M_C lie in [0, 1] (N >= 0), so no mode
+     * grows by more than 1 + factor; with every node corrected, sum m_i w_i
+     * is kept, since sum_i N_i(x_p) = 1.
      */
     void
-    correct_nodal_velocity();
+    correct_towards_consistent_mass(const unsigned int component,
+                                    const double       factor,
+                                    const bool         constrained);
+
+    /**
+     * The nodal conditions on a node whose a = f / m is known: they correct
+     * the velocity v and a so that the end velocity v + dt a meets them,
+     * and v becomes that end velocity.
+     */
+    void
+    apply_explicit_conditions(const unsigned int node, const double dt);
 
     /**
      * Add a point's gravity, load and internal force (with the hoop term in
@@ -229,8 +262,9 @@ namespace mpm
     typename PointAssembly<dim>::Scratch           scratch;
     std::unique_ptr<NodalDensity<dim>>             nodal_density;
     bool                                           corrected_velocity = false;
-    /** The lumped nodal velocities, dim per node, while they are corrected. */
-    std::vector<double> lumped_velocity;
+    bool                                           blended_mass       = false;
+    /** The nodal field, dim per node, while it is corrected. */
+    std::vector<double> lumped_values;
   };
 } // namespace mpm
 

@@ -90,6 +90,12 @@ namespace mpm
       apply(node, velocity);
     }
 
+    void
+    constrain_change(const unsigned int node, double *change) const override
+    {
+      apply(node, change);
+    }
+
     /** Constrain v and a alike, so that v + dt a is constrained. */
     void
     constrain_explicit(const unsigned int node,

@@ -70,6 +70,20 @@ namespace mpm
     constrain_velocity(const unsigned int node, double *velocity) const = 0;
 
     /**
+     * Remove what the condition forbids from a change of a node's explicit
+     * acceleration made after constrain_explicit() (the blended mass), in
+     * place. By default all of it: the node keeps what the condition gave
+     * it. A condition that is a fixed linear projection of the velocity
+     * applies that projection.
+     */
+    virtual void
+    constrain_change(const unsigned int, double *change) const
+    {
+      for (unsigned int d = 0; d < dim; ++d)
+        change[d] = 0.;
+    }
+
+    /**
      * The acceleration of a node at the start of a Newmark run, given its
      * velocity: by default, what constrain_velocity() leaves of it.
      */
