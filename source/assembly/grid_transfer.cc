@@ -87,26 +87,6 @@ namespace mpm
 
   template <int dim>
   void
-  GridTransfer<dim>::project_momentum()
-  {
-    nodes.begin_projection(NodalLayout::velocity, dim);
-    for_each_point([&](const auto &particle, const Support<dim> &support) {
-      const ArrayView<const double> p = particle->get_properties();
-      const double                  m = p[Layout::mass];
-      for (unsigned int i = 0; i < support.n_nodes; ++i)
-        {
-          double *v = nodes.values_of(support.nodes[i]) + NodalLayout::velocity;
-          for (unsigned int d = 0; d < dim; ++d)
-            v[d] += support.N[i] * m * p[Layout::velocity + d];
-        }
-    });
-    nodes.finish_projection();
-  }
-
-
-
-  template <int dim>
-  void
   GridTransfer<dim>::project_force()
   {
     nodes.begin_projection(NodalLayout::force, dim);
@@ -169,7 +149,7 @@ namespace mpm
             double *v = nodes.values_of(node);
             for (unsigned int d = 0; d < dim; ++d)
               v[NodalLayout::velocity + d] +=
-                dt * (v[NodalLayout::force + d] - lumped_values[node * dim + d]);
+                dt * (v[NodalLayout::force + d] - values_aside[node * dim + d]);
           }
       }
   }
@@ -218,14 +198,10 @@ namespace mpm
     // The field is read at the points while M_C w is summed into the same
     // components, and a projection clears the ghost nodes: keep it aside.
     const std::vector<unsigned int> &solve_nodes = nodes.nodes_to_solve();
-    unsigned int                     n_nodes     = 0;
-    for (const unsigned int node : solve_nodes)
-      n_nodes = std::max(n_nodes, node + 1);
-    if (lumped_values.size() < n_nodes * dim)
-      lumped_values.resize(n_nodes * dim);
+    size_values_aside(solve_nodes);
     for (const unsigned int node : solve_nodes)
       for (unsigned int d = 0; d < dim; ++d)
-        lumped_values[node * dim + d] = nodes.values_of(node)[component + d];
+        values_aside[node * dim + d] = nodes.values_of(node)[component + d];
 
     nodes.begin_projection(component, dim);
     for_each_point([&](const auto &particle, const Support<dim> &support) {
@@ -233,7 +209,7 @@ namespace mpm
       double       mw[dim] = {};
       for (unsigned int i = 0; i < support.n_nodes; ++i)
         for (unsigned int d = 0; d < dim; ++d)
-          mw[d] += m * support.N[i] * lumped_values[support.nodes[i] * dim + d];
+          mw[d] += m * support.N[i] * values_aside[support.nodes[i] * dim + d];
       for (unsigned int i = 0; i < support.n_nodes; ++i)
         {
           double *w = nodes.values_of(support.nodes[i]) + component;
@@ -255,14 +231,28 @@ namespace mpm
           }
         double change[dim];
         for (unsigned int d = 0; d < dim; ++d)
-          change[d] = factor * (lumped_values[node * dim + d] - w[d] / m);
+          change[d] = factor * (values_aside[node * dim + d] - w[d] / m);
         if (constrained)
           for (const NodalCondition<dim> *condition : conditions)
             if (condition->acts_on(node))
               condition->constrain_change(node, change);
         for (unsigned int d = 0; d < dim; ++d)
-          w[d] = lumped_values[node * dim + d] + change[d];
+          w[d] = values_aside[node * dim + d] + change[d];
       }
+  }
+
+
+
+  template <int dim>
+  void
+  GridTransfer<dim>::size_values_aside(
+    const std::vector<unsigned int> &solve_nodes)
+  {
+    unsigned int n_nodes = 0;
+    for (const unsigned int node : solve_nodes)
+      n_nodes = std::max(n_nodes, node + 1);
+    if (values_aside.size() < n_nodes * dim)
+      values_aside.resize(n_nodes * dim);
   }
 
 

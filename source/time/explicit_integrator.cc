@@ -53,8 +53,7 @@ namespace mpm
       TimerOutput::Scope scope(timer, section);
       work();
     };
-    PointUpdate advance, stress, advance_and_move, all;
-    advance.advance_velocity          = true;
+    PointUpdate stress, advance_and_move, all;
     stress.update_stress              = true;
     advance_and_move.advance_velocity = true;
     advance_and_move.move             = true;
@@ -73,10 +72,14 @@ namespace mpm
             transfer.compute_nodal_velocity(false);
             transfer.compute_nodal_acceleration(dt);
           });
-          // Point 6: V_p += dt N a (blended with PIC, if asked).
-          timed("G2P", [&] { update_points(dt, advance, report); });
-          // Point 7: v^L from the new point velocities.
-          timed("P2G", [&] { transfer.project_momentum(); });
+          // Point 6: V_p += dt N a (blended with PIC, if asked); point 7:
+          // v^L from the new point velocities, in the same pass.
+          timed("G2P and P2G", [&] {
+            transfer.project_momentum(
+              [&](Particle &particle, const Support<dim> &support) {
+                advance_velocity(particle, support, dt);
+              });
+          });
           timed("nodal solve", [&] { transfer.compute_nodal_velocity(); });
           // Points 8-9: stress and positions from v^L.
           timed("G2P", [&] { update_points(dt, stress_and_move, report); });
@@ -115,31 +118,38 @@ namespace mpm
     transfer.for_each_point(
       [&](Particle &particle, const Support<dim> &support) {
         if (update.advance_velocity)
-          {
-            // FLIP, v_p + dt N a, blended with PIC, N (v + dt a): the PIC
-            // share damps point velocities that the grid cannot represent.
-            const Tensor<1, dim> a =
-              transfer.interpolate(support, NodalLayout::force);
-            const ArrayView<double> p = particle->get_properties();
-            if (pic_fraction > 0.)
-              {
-                const Tensor<1, dim> v =
-                  transfer.interpolate(support, NodalLayout::velocity);
-                for (unsigned int d = 0; d < dim; ++d)
-                  p[Layout::velocity + d] =
-                    (1. - pic_fraction) *
-                      (p[Layout::velocity + d] + dt * a[d]) +
-                    pic_fraction * v[d];
-              }
-            else
-              for (unsigned int d = 0; d < dim; ++d)
-                p[Layout::velocity + d] += dt * a[d];
-          }
+          advance_velocity(particle, support, dt);
         if (update.update_stress)
           update_stress(particle, support, dt, report);
         if (update.move)
           move(particle, support, dt, report);
       });
+  }
+
+
+
+  template <int dim>
+  void
+  ExplicitIntegrator<dim>::advance_velocity(Particle &          particle,
+                                            const Support<dim> &support,
+                                            const double        dt) const
+  {
+    // FLIP, v_p + dt N a, blended with PIC, N (v + dt a): the PIC share
+    // damps point velocities that the grid cannot represent.
+    const Tensor<1, dim> a = transfer.interpolate(support, NodalLayout::force);
+    const ArrayView<double> p = particle->get_properties();
+    if (pic_fraction > 0.)
+      {
+        const Tensor<1, dim> v =
+          transfer.interpolate(support, NodalLayout::velocity);
+        for (unsigned int d = 0; d < dim; ++d)
+          p[Layout::velocity + d] =
+            (1. - pic_fraction) * (p[Layout::velocity + d] + dt * a[d]) +
+            pic_fraction * v[d];
+      }
+    else
+      for (unsigned int d = 0; d < dim; ++d)
+        p[Layout::velocity + d] += dt * a[d];
   }
 
 

@@ -110,6 +110,11 @@ namespace mpm
                   const PointUpdate &update,
                   StepReport &       report);
 
+    /** V_p += dt a(x_p), blended with the PIC velocity if asked. */
+    void
+    advance_velocity(Particle &particle, const Support<dim> &support, double dt)
+      const;
+
     void
     update_stress(Particle &          particle,
                   const Support<dim> &support,
