@@ -87,19 +87,6 @@ namespace mpm
 
   template <int dim>
   void
-  GridTransfer<dim>::project_force()
-  {
-    nodes.begin_projection(NodalLayout::force, dim);
-    for_each_point([&](const auto &particle, const Support<dim> &support) {
-      add_force(particle->get_properties(), support, particle->get_location());
-    });
-    nodes.finish_projection();
-  }
-
-
-
-  template <int dim>
-  void
   GridTransfer<dim>::compute_nodal_velocity(const bool constrain)
   {
     for (const unsigned int node : nodes.nodes_to_solve())

@@ -95,8 +95,14 @@ namespace mpm
         case Scheme::USF:
           timed("P2G", [&] { transfer.project_mass_momentum(false); });
           timed("nodal solve", [&] { transfer.compute_nodal_velocity(); });
-          timed("G2P", [&] { update_points(dt, stress, report); });
-          timed("P2G", [&] { transfer.project_force(); });
+          // The stresses from v^t, and the forces from them, in one pass.
+          timed("G2P and P2G", [&] {
+            prepare_stress_update();
+            transfer.project_force(
+              [&](Particle &particle, const Support<dim> &support) {
+                update_stress(particle, support, dt, report);
+              });
+          });
           timed("nodal solve",
                 [&] { transfer.compute_nodal_acceleration(dt); });
           timed("G2P", [&] { update_points(dt, advance_and_move, report); });
@@ -113,8 +119,8 @@ namespace mpm
                                          const PointUpdate &update,
                                          StepReport &       report)
   {
-    if (update.update_stress && average_dilatation)
-      average_dilatation_rates();
+    if (update.update_stress)
+      prepare_stress_update();
     transfer.for_each_point(
       [&](Particle &particle, const Support<dim> &support) {
         if (update.advance_velocity)
@@ -124,6 +130,16 @@ namespace mpm
         if (update.move)
           move(particle, support, dt, report);
       });
+  }
+
+
+
+  template <int dim>
+  void
+  ExplicitIntegrator<dim>::prepare_stress_update()
+  {
+    if (average_dilatation)
+      average_dilatation_rates();
   }
 
 

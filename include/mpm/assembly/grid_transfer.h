@@ -177,9 +177,23 @@ namespace mpm
       project_momentum([](const auto &, const Support<dim> &) {});
     }
 
-    /** Internal and external force alone, from the current stresses. */
+    /**
+     * Internal and external force alone. Each point is first handed to
+     * update_point(particle, support), in the same pass: it may update the
+     * point's stress, from which its force is then taken, and read the
+     * nodal velocities. This saves USF a pass over the points.
+     */
+    template <typename Function>
     void
-    project_force();
+    project_force(const Function &update_point)
+    {
+      nodes.begin_projection(NodalLayout::force, dim);
+      for_each_point([&](auto &particle, const Support<dim> &support) {
+        update_point(particle, support);
+        add_force(particle->get_properties(), support, particle->get_location());
+      });
+      nodes.finish_projection();
+    }
 
     /**
      * v = p / m on every node (0 where m = 0), corrected if

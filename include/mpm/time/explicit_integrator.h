@@ -110,6 +110,10 @@ namespace mpm
                   const PointUpdate &update,
                   StepReport &       report);
 
+    /** What must be known before any update_stress() of a pass. */
+    void
+    prepare_stress_update();
+
     /** V_p += dt a(x_p), blended with the PIC velocity if asked. */
     void
     advance_velocity(Particle &particle, const Support<dim> &support, double dt)
