@@ -24,7 +24,9 @@ namespace mpm
   void
   GridTransfer<dim>::add_force(const ArrayView<const double> &p,
                                const Support<dim> &           support,
-                               const Point<dim> &             x)
+                               const Point<dim> &             x,
+                               double *                       forces,
+                               const unsigned int             stride)
   {
     const double m = p[Layout::mass];
     // The supports are evaluated at the current positions: dF = I.
@@ -45,7 +47,7 @@ namespace mpm
     external *= load_factor;
     for (unsigned int i = 0; i < support.n_nodes; ++i)
       {
-        double *f = nodes.values_of(support.nodes[i]) + NodalLayout::force;
+        double *f = forces + stride * support.nodes[i];
         for (unsigned int d = 0; d < dim; ++d)
           f[d] += support.N[i] * external[d] - internal[i * dim + d];
       }
@@ -76,7 +78,11 @@ namespace mpm
           nodes.mark_active(node);
         }
       if (with_force)
-        add_force(p, support, particle->get_location());
+        add_force(p,
+                  support,
+                  particle->get_location(),
+                  nodes.values_of(0) + NodalLayout::force,
+                  NodalLayout::n_components);
     });
     nodes.finish_projection();
     if (nodal_density)

@@ -181,17 +181,32 @@ namespace mpm
      * Internal and external force alone. Each point is first handed to
      * update_point(particle, support), in the same pass: it may update the
      * point's stress, from which its force is then taken, and read the
-     * nodal velocities. This saves USF a pass over the points.
+     * nodal values of the last solve, since the forces are summed aside
+     * until the pass ends (a projection clears the ghost nodes). This saves
+     * USF a pass over the points.
      */
     template <typename Function>
     void
     project_force(const Function &update_point)
     {
-      nodes.begin_projection(NodalLayout::force, dim);
+      const std::vector<unsigned int> &solve_nodes = nodes.nodes_to_solve();
+      size_values_aside(solve_nodes);
+      for (const unsigned int node : solve_nodes)
+        for (unsigned int d = 0; d < dim; ++d)
+          values_aside[node * dim + d] = 0.;
       for_each_point([&](auto &particle, const Support<dim> &support) {
         update_point(particle, support);
-        add_force(particle->get_properties(), support, particle->get_location());
+        add_force(particle->get_properties(),
+                  support,
+                  particle->get_location(),
+                  values_aside.data(),
+                  dim);
       });
+      nodes.begin_projection(NodalLayout::force, dim);
+      for (const unsigned int node : solve_nodes)
+        for (unsigned int d = 0; d < dim; ++d)
+          nodes.values_of(node)[NodalLayout::force + d] =
+            values_aside[node * dim + d];
       nodes.finish_projection();
     }
 
@@ -300,13 +315,15 @@ namespace mpm
 
     /**
      * Add a point's gravity, load and internal force (with the hoop term in
-     * an axisymmetric scene, which needs its position x) to its nodes.
+     * an axisymmetric scene, which needs its position x) to its nodes: to
+     * the dim values from forces + stride * node on.
      */
     void
     add_force(const ArrayView<const double> &p,
               const Support<dim> &           support,
-              const Point<dim> &             x);
-
+              const Point<dim> &             x,
+              double *                       forces,
+              const unsigned int             stride);
     MaterialPoints<dim> &           points;
     const GridBasis<dim> &          basis;
     GridNodes<dim> &                nodes;
