@@ -147,34 +147,21 @@ namespace mpm
     void
     project_momentum(const Function &update_point)
     {
-      const std::vector<unsigned int> &solve_nodes = nodes.nodes_to_solve();
-      size_values_aside(solve_nodes);
-      for (const unsigned int node : solve_nodes)
-        for (unsigned int d = 0; d < dim; ++d)
-          values_aside[node * dim + d] = 0.;
-      for_each_point([&](auto &particle, const Support<dim> &support) {
-        update_point(particle, support);
-        const ArrayView<const double> p = particle->get_properties();
-        const double                  m = p[Layout::mass];
-        for (unsigned int i = 0; i < support.n_nodes; ++i)
-          {
-            double *momentum = values_aside.data() + support.nodes[i] * dim;
-            for (unsigned int d = 0; d < dim; ++d)
-              momentum[d] += support.N[i] * m * p[Layout::velocity + d];
-          }
-      });
-      nodes.begin_projection(NodalLayout::velocity, dim);
-      for (const unsigned int node : solve_nodes)
-        for (unsigned int d = 0; d < dim; ++d)
-          nodes.values_of(node)[NodalLayout::velocity + d] =
-            values_aside[node * dim + d];
-      nodes.finish_projection();
-    }
-
-    void
-    project_momentum()
-    {
-      project_momentum([](const auto &, const Support<dim> &) {});
+      project_aside(NodalLayout::velocity,
+                    [&](auto &particle, const Support<dim> &support) {
+                      update_point(particle, support);
+                      const ArrayView<const double> p =
+                        particle->get_properties();
+                      const double m = p[Layout::mass];
+                      for (unsigned int i = 0; i < support.n_nodes; ++i)
+                        {
+                          double *momentum =
+                            values_aside.data() + support.nodes[i] * dim;
+                          for (unsigned int d = 0; d < dim; ++d)
+                            momentum[d] +=
+                              support.N[i] * m * p[Layout::velocity + d];
+                        }
+                    });
     }
 
     /**
@@ -182,32 +169,21 @@ namespace mpm
      * update_point(particle, support), in the same pass: it may update the
      * point's stress, from which its force is then taken, and read the
      * nodal values of the last solve, since the forces are summed aside
-     * until the pass ends (a projection clears the ghost nodes). This saves
-     * USF a pass over the points.
+     * until the pass ends. This saves USF a pass over the points.
      */
     template <typename Function>
     void
     project_force(const Function &update_point)
     {
-      const std::vector<unsigned int> &solve_nodes = nodes.nodes_to_solve();
-      size_values_aside(solve_nodes);
-      for (const unsigned int node : solve_nodes)
-        for (unsigned int d = 0; d < dim; ++d)
-          values_aside[node * dim + d] = 0.;
-      for_each_point([&](auto &particle, const Support<dim> &support) {
-        update_point(particle, support);
-        add_force(particle->get_properties(),
-                  support,
-                  particle->get_location(),
-                  values_aside.data(),
-                  dim);
-      });
-      nodes.begin_projection(NodalLayout::force, dim);
-      for (const unsigned int node : solve_nodes)
-        for (unsigned int d = 0; d < dim; ++d)
-          nodes.values_of(node)[NodalLayout::force + d] =
-            values_aside[node * dim + d];
-      nodes.finish_projection();
+      project_aside(NodalLayout::force,
+                    [&](auto &particle, const Support<dim> &support) {
+                      update_point(particle, support);
+                      add_force(particle->get_properties(),
+                                support,
+                                particle->get_location(),
+                                values_aside.data(),
+                                dim);
+                    });
     }
 
     /**
@@ -300,6 +276,30 @@ namespace mpm
     correct_towards_consistent_mass(const unsigned int component,
                                     const double       factor,
                                     const bool         constrained);
+
+    /**
+     * One pass over the points in which add_point(particle, support) adds
+     * each point's share of a nodal field (dim components from `component`
+     * on) to values_aside, while the nodal values of the last solve can
+     * still be read; the sums then become the field. A projection clears
+     * the ghost nodes, so summing into the field itself would hide them.
+     */
+    template <typename Function>
+    void
+    project_aside(const unsigned int component, const Function &add_point)
+    {
+      const std::vector<unsigned int> &solve_nodes = nodes.nodes_to_solve();
+      size_values_aside(solve_nodes);
+      for (const unsigned int node : solve_nodes)
+        for (unsigned int d = 0; d < dim; ++d)
+          values_aside[node * dim + d] = 0.;
+      for_each_point(add_point);
+      nodes.begin_projection(component, dim);
+      for (const unsigned int node : solve_nodes)
+        for (unsigned int d = 0; d < dim; ++d)
+          nodes.values_of(node)[component + d] = values_aside[node * dim + d];
+      nodes.finish_projection();
+    }
 
     /** values_aside holds dim values for every node in `solve_nodes`. */
     void
