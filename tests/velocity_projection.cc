@@ -18,7 +18,13 @@
 //   the internal forces' size; and its free fall stays exact (the nodal
 //   accelerations are all g, which the step leaves as they are). A block
 //   on a fixed floor and against a slip wall: the floor's nodes stay at
-//   rest and the wall's slide along it only.
+//   rest and the wall's slide along it only. The elastic block of
+//   scenes/friction_block.prm (MUSL, pure PIC) on a Coulomb floor with
+//   gravity tilted by 30 degrees: with mu = 0.2 its centre of mass
+//   accelerates as the rigid block's g (sin 30 - mu cos 30) within 1 %,
+//   with mu = 0.7 it sticks (below 1e-4 m), and the floor's force stays in
+//   Coulomb's cone (1e-12 of the weight), as tests/friction_walls checks
+//   with the lumped mass.
 // - the vibrating bar of benchmarks.md section 7 on 16 cells, USF with CFL
 //   0.1: its period against that of the lumped-mass finite-element chain
 //   of the same cells, T x / sin(x), x = beta_1 h / 2 (the eigenvector is
@@ -265,6 +271,59 @@ namespace
   }
 
   /**
+   * An elastic block on a plane with Coulomb friction, gravity tilted by 30
+   * degrees (scenes/friction_block.prm: MUSL, pure PIC), with the blended
+   * mass: mu = 0.2 slides with the rigid block's g (sin 30 - mu cos 30),
+   * mu = 0.7 sticks, and the floor's force stays within Coulomb's cone.
+   */
+  void
+  check_blended_mass_friction()
+  {
+    const double g = 9.81, theta = numbers::PI / 6.;
+    for (const double mu : {0.2, 0.7})
+      {
+        const std::string name = "friction-" + std::to_string(mu).substr(0, 3);
+        auto              csv  = mpm_tests::run_scene(
+          "scenes/friction_block.prm",
+          "output-blended-" + name,
+          {"Time stepping/Mass matrix=blended",
+           "Boundary conditions/Friction boundaries=bottom: " +
+             std::to_string(mu)});
+        const double x0 = csv["centre_of_mass_x"][0];
+        double       num = 0., den = 0., travel = 0., bound = 0.;
+        for (unsigned int n = 0; n < csv["time"].size(); ++n)
+          {
+            const double s  = 0.5 * csv["time"][n] * csv["time"][n],
+                         dx = csv["centre_of_mass_x"][n] - x0;
+            num += s * dx;
+            den += s * s;
+            travel = std::max(travel, std::abs(dx));
+            bound  = std::max(bound,
+                             std::abs(csv["bottom_tangential_force"][n]) -
+                               mu * csv["bottom_normal_force"][n]);
+          }
+        const double weight = 1000. * 0.4 * 0.2 * g;
+        mpm_tests::check("blended mass, friction floor: |T| <= mu N",
+                         bound < 1e-12 * weight);
+        if (mu < 0.5)
+          {
+            const double ratio =
+              num / den / (g * (std::sin(theta) - mu * std::cos(theta)));
+            deallog << "blended mass, mu = 0.2: a / (g (sin - mu cos)) = "
+                    << std::setprecision(4) << ratio << std::setprecision(6)
+                    << std::endl;
+            mpm_tests::check("blended mass, mu = 0.2: the rigid block's "
+                             "acceleration within 1 %",
+                             std::abs(ratio - 1.) < 0.01);
+          }
+        else
+          mpm_tests::check("blended mass, mu = 0.7: sticks (travel below "
+                           "1e-4 m)",
+                           travel < 1e-4);
+      }
+  }
+
+  /**
    * The vibrating bar on `cells` cells with `settings`: its mean period
    * between the first and the last downward zero crossing of the
    * centre-of-mass velocity, and the largest error of that velocity over
@@ -386,5 +445,6 @@ main(int argc, char **argv)
   mpm_tests::initlog();
   check_round_trip();
   check_blended_mass_momentum();
+  check_blended_mass_friction();
   check_vibrating_bar();
 }

@@ -106,7 +106,19 @@ namespace mpm
             m > 0. ? v[NodalLayout::velocity + d] / m : 0.;
       }
     if (corrected_velocity)
-      correct_towards_consistent_mass(NodalLayout::velocity, 1., false);
+      {
+        const std::vector<unsigned int> &solve_nodes = nodes.nodes_to_solve();
+        size_values_aside(solve_nodes);
+        for (const unsigned int node : solve_nodes)
+          for (unsigned int d = 0; d < dim; ++d)
+            values_aside[node * dim + d] =
+              nodes.values_of(node)[NodalLayout::velocity + d];
+        correct_towards_consistent_mass(NodalLayout::velocity,
+                                        1.,
+                                        false,
+                                        [](const unsigned int, const double *) {
+                                        });
+      }
     if (constrain)
       for (const unsigned int node : nodes.nodes_to_solve())
         for (const NodalCondition<dim> *condition : conditions)
@@ -123,6 +135,12 @@ namespace mpm
   GridTransfer<dim>::compute_nodal_acceleration(const double dt)
   {
     const std::vector<unsigned int> &solve_nodes = nodes.nodes_to_solve();
+    if (blended_mass)
+      {
+        size_values_aside(solve_nodes);
+        values_kept.resize(values_aside.size());
+        held.resize(values_aside.size() / dim);
+      }
     for (const unsigned int node : solve_nodes)
       {
         double *     v = nodes.values_of(node);
@@ -133,18 +151,16 @@ namespace mpm
         apply_explicit_conditions(node, dt);
       }
     if (blended_mass)
-      {
-        correct_towards_consistent_mass(NodalLayout::force, 0.5, true);
-        // The end velocities follow the accelerations' changes (the
-        // accelerations before them are still aside).
-        for (const unsigned int node : solve_nodes)
-          {
-            double *v = nodes.values_of(node);
-            for (unsigned int d = 0; d < dim; ++d)
-              v[NodalLayout::velocity + d] +=
-                dt * (v[NodalLayout::force + d] - values_aside[node * dim + d]);
-          }
-      }
+      // The end velocities follow the accelerations' changes.
+      correct_towards_consistent_mass(
+        NodalLayout::force,
+        0.5,
+        true,
+        [&](const unsigned int node, const double *change) {
+          double *velocity = nodes.values_of(node) + NodalLayout::velocity;
+          for (unsigned int d = 0; d < dim; ++d)
+            velocity[d] += dt * change[d];
+        });
   }
 
 
@@ -158,9 +174,12 @@ namespace mpm
     const double m        = v[NodalLayout::mass];
     double *     a        = v + NodalLayout::force;
     double *     velocity = v + NodalLayout::velocity;
-    double       start[dim];
+    double       start[dim], lumped[dim];
     for (unsigned int d = 0; d < dim; ++d)
-      start[d] = velocity[d];
+      {
+        start[d]  = velocity[d];
+        lumped[d] = a[d];
+      }
     bool constrained = false;
     for (const NodalCondition<dim> *condition : conditions)
       if (condition->acts_on(node))
@@ -168,6 +187,20 @@ namespace mpm
           condition->constrain_explicit(node, m, velocity, a, dt, time);
           constrained = true;
         }
+    if (blended_mass)
+      {
+        // The blended mass reads the acceleration the conditions leave,
+        // without the impulse below: in MUSL a held node starts from an
+        // unconstrained velocity, whose stop is no acceleration of the
+        // material. It keeps the node where they held it in this solve.
+        held[node] = false;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            values_aside[node * dim + d] = a[d];
+            held[node] = held[node] || a[d] != lumped[d] ||
+                         velocity[d] != start[d];
+          }
+      }
     for (unsigned int d = 0; d < dim; ++d)
       {
         // a takes the conditions' reaction impulse (velocity - start)
@@ -182,19 +215,22 @@ namespace mpm
 
 
   template <int dim>
+  template <typename Function>
   void
   GridTransfer<dim>::correct_towards_consistent_mass(
     const unsigned int component,
     const double       factor,
-    const bool         constrained)
+    const bool         constrained,
+    const Function &   after_change)
   {
-    // The field is read at the points while M_C w is summed into the same
-    // components, and a projection clears the ghost nodes: keep it aside.
+    // w is in values_aside; M_C w is summed into the component, since a
+    // projection clears the ghost nodes, so what the component held is
+    // kept aside as well.
     const std::vector<unsigned int> &solve_nodes = nodes.nodes_to_solve();
-    size_values_aside(solve_nodes);
+    values_kept.resize(values_aside.size());
     for (const unsigned int node : solve_nodes)
       for (unsigned int d = 0; d < dim; ++d)
-        values_aside[node * dim + d] = nodes.values_of(node)[component + d];
+        values_kept[node * dim + d] = nodes.values_of(node)[component + d];
 
     nodes.begin_projection(component, dim);
     for_each_point([&](const auto &particle, const Support<dim> &support) {
@@ -216,21 +252,19 @@ namespace mpm
       {
         double *     w = nodes.values_of(node) + component;
         const double m = nodes.values_of(node)[NodalLayout::mass];
-        if (!(m > 0.))
+        double       change[dim] = {};
+        if (m > 0.)
           {
             for (unsigned int d = 0; d < dim; ++d)
-              w[d] = 0.;
-            continue;
+              change[d] = factor * (values_aside[node * dim + d] - w[d] / m);
+            if (constrained)
+              for (const NodalCondition<dim> *condition : conditions)
+                if (condition->acts_on(node))
+                  condition->constrain_change(node, held[node], change);
           }
-        double change[dim];
         for (unsigned int d = 0; d < dim; ++d)
-          change[d] = factor * (values_aside[node * dim + d] - w[d] / m);
-        if (constrained)
-          for (const NodalCondition<dim> *condition : conditions)
-            if (condition->acts_on(node))
-              condition->constrain_change(node, change);
-        for (unsigned int d = 0; d < dim; ++d)
-          w[d] = values_aside[node * dim + d] + change[d];
+          w[d] = values_kept[node * dim + d] + change[d];
+        after_change(node, change);
       }
   }
 

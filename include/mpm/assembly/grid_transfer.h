@@ -249,33 +249,36 @@ namespace mpm
 
   private:
     /**
-     * The nodal field w in `dim` components from `component` on takes the
-     * step w += factor (w - M_L^-1 M_C w), M_C = sum m_p N_p N_p^T the
-     * consistent mass, on every node; if `constrained`, each node's change
-     * then passes through the conditions on it, as in a consistent solve
-     * with what they hold held (NodalCondition::constrain_change()). factor 1 is one Jacobi step from a lumped solve
-     * M_L w = r towards M_C w = r; for a smooth mode of wave number k on a
-     * uniform 1D grid M_L^-1 M_C has the eigenvalue 1 - e, e = (kh)^2 / 6.
+     * A nodal field w, whose values are in values_aside, takes a step
+     * towards the consistent mass M_C = sum m_p N_p N_p^T: the change
+     * factor (w - M_L^-1 M_C w) is added to the `dim` components from
+     * `component` on, then handed to after_change(node, change). If
+     * `constrained`, each node's change first passes through the conditions
+     * on it, as in a consistent solve with what they hold held
+     * (NodalCondition::constrain_change()). Nodes without mass keep their
+     * values. factor 1 is one Jacobi step from a lumped solve M_L w = r
+     * towards M_C w = r; for a smooth mode of wave number k on a uniform 1D
+     * grid M_L^-1 M_C has the eigenvalue 1 - e, e = (kh)^2 / 6.
      * - Velocity (factor 1, corrected projection, before the conditions: a
      *   wall node's lumped velocity is a true mean of its points' ones):
-     *   the point velocities are
-     *   sums of nodal updates, so what a step hands the next passes through
-     *   P N = M_L^-1 M_C, which lengthens periods by (kh)^2 / 12, three
-     *   times the lumped mass's own (kh)^2 / 24; after the step P N has the
-     *   eigenvalue 1 - e^2.
-     * - Acceleration (factor 1/2, blended mass, after the conditions: a
-     *   held node's lumped acceleration carries the wall's reaction):
-     *   a = (1 + e / 2) M_L^-1 f
-     *   is the solve with the mean of the lumped and the consistent mass to
-     *   O(e^2), whose dispersion cancels to O((kh)^4).
+     *   the point velocities are sums of nodal updates, so what a step hands
+     *   the next passes through P N = M_L^-1 M_C, which lengthens periods
+     *   by (kh)^2 / 12, three times the lumped mass's own (kh)^2 / 24; after
+     *   the step P N has the eigenvalue 1 - e^2.
+     * - Acceleration (factor 1/2, blended mass, after the conditions):
+     *   a = (1 + e / 2) M_L^-1 f is the solve with the mean of the lumped
+     *   and the consistent mass to O(e^2), whose dispersion cancels to
+     *   O((kh)^4).
      * The eigenvalues of M_L^-1 M_C lie in [0, 1] (N >= 0), so no mode
-     * grows by more than 1 + factor; with every node corrected, sum m_i w_i
-     * is kept, since sum_i N_i(x_p) = 1.
+     * grows by more than 1 + factor; unconstrained, sum m_i w_i is kept,
+     * since sum_i N_i(x_p) = 1.
      */
+    template <typename Function>
     void
     correct_towards_consistent_mass(const unsigned int component,
                                     const double       factor,
-                                    const bool         constrained);
+                                    const bool         constrained,
+                                    const Function &   after_change);
 
     /**
      * One pass over the points in which add_point(particle, support) adds
@@ -336,10 +339,17 @@ namespace mpm
     bool                                           corrected_velocity = false;
     bool                                           blended_mass       = false;
     /**
-     * dim values per node, kept aside while a nodal field is corrected or
-     * summed aside while the nodal values are read.
+     * dim values per node: a nodal field to be corrected, or sums made
+     * while the nodal values are still read.
      */
     std::vector<double> values_aside;
+    /** dim values per node: what a corrected component held before. */
+    std::vector<double> values_kept;
+    /**
+     * Per node, with the blended mass: whether a nodal condition changed
+     * its velocity or acceleration in this solve.
+     */
+    std::vector<bool> held;
   };
 } // namespace mpm
 

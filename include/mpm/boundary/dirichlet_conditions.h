@@ -91,7 +91,9 @@ namespace mpm
     }
 
     void
-    constrain_change(const unsigned int node, double *change) const override
+    constrain_change(const unsigned int node,
+                     const bool,
+                     double *change) const override
     {
       apply(node, change);
     }

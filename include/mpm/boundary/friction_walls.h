@@ -111,6 +111,17 @@ namespace mpm
                        const double       dt,
                        const double       time) const override;
 
+    /**
+     * The blended mass's change at a node that a wall held in this solve:
+     * never into or out of the wall, and not along it where the node
+     * sticks; a sliding node takes the change along the wall, since its
+     * friction is a given force there.
+     */
+    void
+    constrain_change(const unsigned int node,
+                     const bool         held,
+                     double *           change) const override;
+
     /** The node's walls, in the order of the entry. */
     unsigned int
     n_unilateral_walls(const unsigned int node) const override

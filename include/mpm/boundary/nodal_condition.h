@@ -72,15 +72,18 @@ namespace mpm
     /**
      * Remove what the condition forbids from a change of a node's explicit
      * acceleration made after constrain_explicit() (the blended mass), in
-     * place. By default all of it: the node keeps what the condition gave
-     * it. A condition that is a fixed linear projection of the velocity
+     * place; `held` says whether the conditions on the node changed its
+     * velocity or acceleration in that solve. By default a held node keeps
+     * what the condition gave it, and a node it let be takes the change.
+     * A condition that is a fixed linear projection of the velocity
      * applies that projection.
      */
     virtual void
-    constrain_change(const unsigned int, double *change) const
+    constrain_change(const unsigned int, const bool held, double *change) const
     {
-      for (unsigned int d = 0; d < dim; ++d)
-        change[d] = 0.;
+      if (held)
+        for (unsigned int d = 0; d < dim; ++d)
+          change[d] = 0.;
     }
 
     /**
