@@ -106,19 +106,12 @@ namespace mpm
             m > 0. ? v[NodalLayout::velocity + d] / m : 0.;
       }
     if (corrected_velocity)
-      {
-        const std::vector<unsigned int> &solve_nodes = nodes.nodes_to_solve();
-        size_values_aside(solve_nodes);
-        for (const unsigned int node : solve_nodes)
-          for (unsigned int d = 0; d < dim; ++d)
-            values_aside[node * dim + d] =
-              nodes.values_of(node)[NodalLayout::velocity + d];
-        correct_towards_consistent_mass(NodalLayout::velocity,
-                                        1.,
-                                        false,
-                                        [](const unsigned int, const double *) {
-                                        });
-      }
+      correct_towards_consistent_mass(NodalLayout::velocity,
+                                      false,
+                                      1.,
+                                      false,
+                                      [](const unsigned int, const double *) {
+                                      });
     if (constrain)
       for (const unsigned int node : nodes.nodes_to_solve())
         for (const NodalCondition<dim> *condition : conditions)
@@ -138,7 +131,6 @@ namespace mpm
     if (blended_mass)
       {
         size_values_aside(solve_nodes);
-        values_kept.resize(values_aside.size());
         held.resize(values_aside.size() / dim);
       }
     for (const unsigned int node : solve_nodes)
@@ -154,6 +146,7 @@ namespace mpm
       // The end velocities follow the accelerations' changes.
       correct_towards_consistent_mass(
         NodalLayout::force,
+        true,
         0.5,
         true,
         [&](const unsigned int node, const double *change) {
@@ -219,18 +212,19 @@ namespace mpm
   void
   GridTransfer<dim>::correct_towards_consistent_mass(
     const unsigned int component,
+    const bool         field_aside,
     const double       factor,
     const bool         constrained,
     const Function &   after_change)
   {
-    // w is in values_aside; M_C w is summed into the component, since a
-    // projection clears the ghost nodes, so what the component held is
-    // kept aside as well.
+    // M_C w is summed into the component, since a projection clears the
+    // ghost nodes, so what the component held is kept aside first.
     const std::vector<unsigned int> &solve_nodes = nodes.nodes_to_solve();
-    values_kept.resize(values_aside.size());
+    size_values_aside(solve_nodes);
     for (const unsigned int node : solve_nodes)
       for (unsigned int d = 0; d < dim; ++d)
         values_kept[node * dim + d] = nodes.values_of(node)[component + d];
+    const std::vector<double> &w = field_aside ? values_aside : values_kept;
 
     nodes.begin_projection(component, dim);
     for_each_point([&](const auto &particle, const Support<dim> &support) {
@@ -238,7 +232,7 @@ namespace mpm
       double       mw[dim] = {};
       for (unsigned int i = 0; i < support.n_nodes; ++i)
         for (unsigned int d = 0; d < dim; ++d)
-          mw[d] += m * support.N[i] * values_aside[support.nodes[i] * dim + d];
+          mw[d] += m * support.N[i] * w[support.nodes[i] * dim + d];
       for (unsigned int i = 0; i < support.n_nodes; ++i)
         {
           double *w = nodes.values_of(support.nodes[i]) + component;
@@ -250,20 +244,20 @@ namespace mpm
 
     for (const unsigned int node : solve_nodes)
       {
-        double *     w = nodes.values_of(node) + component;
-        const double m = nodes.values_of(node)[NodalLayout::mass];
+        double *     values      = nodes.values_of(node) + component;
+        const double m           = nodes.values_of(node)[NodalLayout::mass];
         double       change[dim] = {};
         if (m > 0.)
           {
             for (unsigned int d = 0; d < dim; ++d)
-              change[d] = factor * (values_aside[node * dim + d] - w[d] / m);
+              change[d] = factor * (w[node * dim + d] - values[d] / m);
             if (constrained)
               for (const NodalCondition<dim> *condition : conditions)
                 if (condition->acts_on(node))
                   condition->constrain_change(node, held[node], change);
           }
         for (unsigned int d = 0; d < dim; ++d)
-          w[d] = values_kept[node * dim + d] + change[d];
+          values[d] = values_kept[node * dim + d] + change[d];
         after_change(node, change);
       }
   }
@@ -279,7 +273,10 @@ namespace mpm
     for (const unsigned int node : solve_nodes)
       n_nodes = std::max(n_nodes, node + 1);
     if (values_aside.size() < n_nodes * dim)
-      values_aside.resize(n_nodes * dim);
+      {
+        values_aside.resize(n_nodes * dim);
+        values_kept.resize(n_nodes * dim);
+      }
   }
 
 

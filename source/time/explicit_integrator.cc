@@ -53,13 +53,10 @@ namespace mpm
       TimerOutput::Scope scope(timer, section);
       work();
     };
-    PointUpdate stress, advance_and_move, all;
-    stress.update_stress              = true;
-    advance_and_move.advance_velocity = true;
-    advance_and_move.move             = true;
+    PointUpdate stress_and_move, advance_and_move, all;
+    stress_and_move.update_stress = stress_and_move.move = true;
+    advance_and_move.advance_velocity = advance_and_move.move = true;
     all.advance_velocity = all.update_stress = all.move = true;
-    PointUpdate stress_and_move = stress;
-    stress_and_move.move        = true;
 
     switch (scheme)
       {

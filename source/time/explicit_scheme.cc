@@ -112,8 +112,6 @@ namespace mpm
     const typename TimeScheme<dim>::Scene &scene)
     : TimeScheme<dim>(prm, scene)
     , cfl_number(TimeScheme<dim>::time_stepping_number(prm, "CFL number"))
-    , blended_mass(TimeScheme<dim>::time_stepping_entry(prm, "Mass matrix") ==
-                   "blended")
     , integrator(scene.transfer,
                  scene.materials,
                  ExplicitIntegrator<dim>::parse_scheme(
@@ -133,7 +131,7 @@ namespace mpm
     if (TimeScheme<dim>::time_stepping_entry(prm, "Velocity projection") ==
         "corrected")
       scene.transfer.enable_corrected_velocity_projection();
-    if (blended_mass)
+    if (TimeScheme<dim>::time_stepping_entry(prm, "Mass matrix") == "blended")
       scene.transfer.enable_blended_mass();
   }
 
@@ -251,7 +249,7 @@ namespace mpm
     // (GridTransfer::correct_towards_consistent_mass()).
     return this->scene.grid.minimum_cell_size() /
            (speeds.signal + speeds.point) /
-           (blended_mass ? std::sqrt(1.5) : 1.);
+           (this->scene.transfer.has_blended_mass() ? std::sqrt(1.5) : 1.);
   }
 
 

@@ -98,6 +98,13 @@ namespace mpm
       blended_mass = true;
     }
 
+    /** Whether enable_blended_mass() was called. */
+    bool
+    has_blended_mass() const
+    {
+      return blended_mass;
+    }
+
     /**
      * The density of a point with properties p, support `support` and
      * deformation gradient F: from the point positions if `from_positions`
@@ -249,8 +256,8 @@ namespace mpm
 
   private:
     /**
-     * A nodal field w, whose values are in values_aside, takes a step
-     * towards the consistent mass M_C = sum m_p N_p N_p^T: the change
+     * A nodal field w (in values_aside if `field_aside`, else what the
+     * component holds) takes a step towards the consistent mass M_C = sum m_p N_p N_p^T: the change
      * factor (w - M_L^-1 M_C w) is added to the `dim` components from
      * `component` on, then handed to after_change(node, change). If
      * `constrained`, each node's change first passes through the conditions
@@ -276,6 +283,7 @@ namespace mpm
     template <typename Function>
     void
     correct_towards_consistent_mass(const unsigned int component,
+                                    const bool         field_aside,
                                     const double       factor,
                                     const bool         constrained,
                                     const Function &   after_change);
@@ -304,7 +312,10 @@ namespace mpm
       nodes.finish_projection();
     }
 
-    /** values_aside holds dim values for every node in `solve_nodes`. */
+    /**
+     * values_aside and values_kept hold dim values for every node in
+     * `solve_nodes`.
+     */
     void
     size_values_aside(const std::vector<unsigned int> &solve_nodes);
 

@@ -96,8 +96,6 @@ namespace mpm
                const double                                         dt) const;
 
     double                   cfl_number;
-    /** Time stepping/Mass matrix = blended. */
-    bool                     blended_mass;
     ExplicitIntegrator<dim>  integrator;
     /** The speeds after the last step: they limit the next one. */
     Speeds                   speeds;
