@@ -30,6 +30,60 @@ namespace mpm
             c.access_raw_entry(n * I + J) += kA * B.access_raw_entry(J);
         }
     }
+
+
+
+    /**
+     * The row and column of each independent entry of a
+     * SymmetricTensor<2, 3>, in deal.II's order: written through its raw
+     * entries, the two functions below avoid its index accessors.
+     */
+    constexpr unsigned int row[6]    = {0, 1, 2, 0, 0, 1};
+    constexpr unsigned int column[6] = {0, 1, 2, 1, 2, 2};
+
+
+
+    /**
+     * f b f^T of a symmetric b, only the 6 independent entries of the
+     * result worked out. deal.II's general contractions and symmetrize()
+     * were a fifth of an explicit plastic step.
+     */
+    SymmetricTensor<2, 3>
+    push_forward(const Tensor<2, 3> &f, const SymmetricTensor<2, 3> &b)
+    {
+      const Tensor<2, 3> full(b);
+      Tensor<2, 3>       fb;
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = 0; j < 3; ++j)
+          fb[i][j] = f[i][0] * full[0][j] + f[i][1] * full[1][j] +
+                     f[i][2] * full[2][j];
+      SymmetricTensor<2, 3> result;
+      for (unsigned int k = 0; k < 6; ++k)
+        {
+          const unsigned int i = row[k], j = column[k];
+          result.access_raw_entry(k) =
+            fb[i][0] * f[j][0] + fb[i][1] * f[j][1] + fb[i][2] * f[j][2];
+        }
+      return result;
+    }
+
+
+
+    /** sum_a v_a n_a (x) n_a, entry by entry (no outer products). */
+    SymmetricTensor<2, 3>
+    from_principal(const Tensor<1, 3> &                v,
+                   const std::array<Tensor<1, 3>, 3> &n)
+    {
+      SymmetricTensor<2, 3> t;
+      for (unsigned int k = 0; k < 6; ++k)
+        {
+          const unsigned int i = row[k], j = column[k];
+          t.access_raw_entry(k) = v[0] * (n[0][i] * n[0][j]) +
+                                  v[1] * (n[1][i] * n[1][j]) +
+                                  v[2] * (n[2][i] * n[2][j]);
+        }
+      return t;
+    }
   } // namespace
 
 
@@ -46,19 +100,10 @@ namespace mpm
                       "elastic_b_minus_I_xy",
                       "elastic_b_minus_I_xz",
                       "elastic_b_minus_I_yz"};
-    principal_compliance = invert(principal_stiffness());
-  }
-
-
-
-  Tensor<2, 3>
-  HenckyPlasticity::principal_stiffness() const
-  {
-    Tensor<2, 3> D;
     for (unsigned int a = 0; a < 3; ++a)
       for (unsigned int b = 0; b < 3; ++b)
-        D[a][b] = lambda + (a == b ? 2. * mu : 0.);
-    return D;
+        principal_stiffness[a][b] = lambda + (a == b ? 2. * mu : 0.);
+    principal_compliance = invert(principal_stiffness);
   }
 
 
@@ -72,23 +117,22 @@ namespace mpm
     SymmetricTensor<2, 3> b_old = unit_symmetric_tensor<3>();
     for (unsigned int k = 0; k < 6; ++k)
       b_old.access_raw_entry(k) += old_internal_variables[elastic_b_minus_I + k];
-    const Tensor<2, 3> f = kinematics.F_new * invert(kinematics.F_old);
-    const SymmetricTensor<2, 3> b_trial =
-      symmetrize(Tensor<2, 3>(f * Tensor<2, 3>(b_old) * transpose(f)));
+    // The step's relative deformation gradient f = F_new F_old^-1, which
+    // the kinematics give as I + dt L (no inverse).
+    const Tensor<2, 3> f = Tensor<2, 3>(unit_symmetric_tensor<3>()) +
+                           kinematics.dt * kinematics.velocity_gradient;
 
-    Step         step;
-    step.b_trial = b_trial;
-    Tensor<1, 3> trial_tau;
-    const auto   eigen = principal_axes(b_trial);
-    const Tensor<2, 3> D = principal_stiffness();
-    Tensor<1, 3>       eps;
+    Step step;
+    step.b_trial     = push_forward(f, b_old);
+    const auto eigen = principal_axes(step.b_trial);
+    Tensor<1, 3> eps;
     for (unsigned int a = 0; a < 3; ++a)
       {
         step.beta[a]       = eigen[a].first;
         step.directions[a] = eigen[a].second;
         eps[a]             = 0.5 * std::log(eigen[a].first);
       }
-    trial_tau   = D * eps;
+    const Tensor<1, 3> trial_tau = principal_stiffness * eps;
     step.result =
       return_to_yield_surface(trial_tau,
                               old_internal_variables[equivalent_plastic_strain],
@@ -110,23 +154,17 @@ namespace mpm
       ArrayView<const double>(internal_variables.data(),
                               internal_variables.size()),
       false);
-    std::array<SymmetricTensor<2, 3>, 3> m;
-    stress = 0;
-    for (unsigned int a = 0; a < 3; ++a)
-      {
-        m[a] = symmetrize(outer_product(step.directions[a], step.directions[a]));
-        stress += step.result.tau[a] / step.J * m[a];
-      }
+    stress = from_principal(step.result.tau / step.J, step.directions);
     // An elastic step keeps the trial b_e; after a return, the elastic
     // strains of the returned stress rebuild it.
     SymmetricTensor<2, 3> b_new = step.b_trial;
     if (step.result.plastic)
       {
-        const Tensor<1, 3> eps_elastic =
+        Tensor<1, 3> stretch =
           principal_compliance * step.result.tau;
-        b_new = 0;
         for (unsigned int a = 0; a < 3; ++a)
-          b_new += std::exp(2. * eps_elastic[a]) * m[a];
+          stretch[a] = std::exp(2. * stretch[a]);
+        b_new = from_principal(stretch, step.directions);
       }
     b_new -= unit_symmetric_tensor<3>();
     for (unsigned int k = 0; k < 6; ++k)
@@ -157,11 +195,15 @@ namespace mpm
                 << name() << "'; choose K0 nearer 1, or start from rest.";
         throw InputError(message.str());
       }
-    const Tensor<1, 3>    eps = principal_compliance * tau;
-    SymmetricTensor<2, 3> b_minus_I;
+    Tensor<1, 3>                stretch_minus_1 = principal_compliance * tau;
+    std::array<Tensor<1, 3>, 3> directions;
     for (unsigned int a = 0; a < 3; ++a)
-      b_minus_I += (std::exp(2. * eps[a]) - 1.) *
-                   symmetrize(outer_product(eigen[a].second, eigen[a].second));
+      {
+        stretch_minus_1[a] = std::expm1(2. * stretch_minus_1[a]);
+        directions[a]      = eigen[a].second;
+      }
+    const SymmetricTensor<2, 3> b_minus_I =
+      from_principal(stretch_minus_1, directions);
     for (unsigned int k = 0; k < 6; ++k)
       internal_variables[elastic_b_minus_I + k] =
         b_minus_I.access_raw_entry(k);

@@ -117,6 +117,31 @@ namespace mpm
         throw InputError(message.str());
       }
     peak_planes = planes_of({peak_cohesion, peak_friction_angle});
+
+    // The sets of planes a return may rest on, fewest first: one, then the
+    // lines of two, the points of three. Without a tension cut-off the
+    // stress can rest only on the main plane 0 (k s_1 - s_3 = sigma_c), on
+    // its edges with plane 1 (s_1 = s_2) or plane 2 (s_2 = s_3), or on all
+    // three: plane 1 or 2 alone, or the two together, leave plane 0
+    // violated unless two stresses are equal, where the edge holds them
+    // too. The explicit scheme returns most points of a flowing granular
+    // body every step, so the sets that cannot hold are not listed.
+    const unsigned int n_planes = peak_planes.size();
+    if (n_planes == 3)
+      active_sets = {{{{0, 0, 0}}, 1}, {{{0, 1, 0}}, 2}, {{{0, 2, 0}}, 2},
+                     {{{0, 1, 2}}, 3}};
+    else
+      {
+        for (unsigned int i = 0; i < n_planes; ++i)
+          active_sets.push_back({{{i, 0, 0}}, 1});
+        for (unsigned int i = 0; i < n_planes; ++i)
+          for (unsigned int j = i + 1; j < n_planes; ++j)
+            active_sets.push_back({{{i, j, 0}}, 2});
+        for (unsigned int i = 0; i < n_planes; ++i)
+          for (unsigned int j = i + 1; j < n_planes; ++j)
+            for (unsigned int l = j + 1; l < n_planes; ++l)
+              active_sets.push_back({{{i, j, l}}, 3});
+      }
   }
 
 
@@ -145,6 +170,20 @@ namespace mpm
 
 
 
+  MohrCoulomb::Plane::Plane(const Tensor<1, 3> &a,
+                            const Tensor<1, 3> &b,
+                            const double        r,
+                            const Tensor<2, 3> &D)
+    : a(a)
+    , b(b)
+    , r(r)
+    , Db(D * b)
+    , Da(D * a)
+    , scale(a.norm() * Db.norm())
+  {}
+
+
+
   MohrCoulomb::Planes
   MohrCoulomb::planes_of(const std::pair<double, double> &strength) const
   {
@@ -153,16 +192,26 @@ namespace mpm
     const double k      = (1. + std::sin(phi)) / (1. - std::sin(phi));
     const double m      = (1. + std::sin(psi)) / (1. - std::sin(psi));
     const double sigma_c = 2. * c * std::sqrt(k);
-    Planes result = {
-      {Tensor<1, 3>({k, 0., -1.}), Tensor<1, 3>({m, 0., -1.}), sigma_c},
-      {Tensor<1, 3>({0., k, -1.}), Tensor<1, 3>({0., m, -1.}), sigma_c},
-      {Tensor<1, 3>({k, -1., 0.}), Tensor<1, 3>({m, -1., 0.}), sigma_c}};
+    const Tensor<2, 3> &D = principal_stiffness;
+    Planes result;
+    result.emplace_back(Tensor<1, 3>({k, 0., -1.}),
+                        Tensor<1, 3>({m, 0., -1.}),
+                        sigma_c,
+                        D);
+    result.emplace_back(Tensor<1, 3>({0., k, -1.}),
+                        Tensor<1, 3>({0., m, -1.}),
+                        sigma_c,
+                        D);
+    result.emplace_back(Tensor<1, 3>({k, -1., 0.}),
+                        Tensor<1, 3>({m, -1., 0.}),
+                        sigma_c,
+                        D);
     if (tension_cut_off)
       for (unsigned int i = 0; i < 3; ++i)
         {
           Tensor<1, 3> e;
           e[i] = 1.;
-          result.push_back({e, e, tensile_strength});
+          result.emplace_back(e, e, tensile_strength, D);
         }
     return result;
   }
@@ -197,7 +246,6 @@ namespace mpm
                                        const double        plastic_strain,
                                        const bool with_tangent) const
   {
-    const Tensor<2, 3> D = principal_stiffness();
     // Without softening the peak planes themselves, not a copy.
     Planes        softened;
     const Planes &surfaces =
@@ -207,17 +255,24 @@ namespace mpm
     Return r;
     r.tau = trial_tau;
     if (with_tangent)
-      r.tangent = D;
+      r.tangent = principal_stiffness;
 
     // Work in the ordered frame: sigma_1 >= sigma_2 >= sigma_3 (as
-    // largest_violation() does, sorted once here).
+    // largest_violation() does), sorted once here by insertion, which
+    // keeps equal stresses in their order.
     std::array<unsigned int, 3> order = {{0, 1, 2}};
-    std::sort(order.begin(), order.end(), [&](unsigned int a, unsigned int b) {
-      return trial_tau[a] > trial_tau[b];
-    });
-    Tensor<1, 3> sigma_trial;
-    for (unsigned int i = 0; i < 3; ++i)
-      sigma_trial[i] = trial_tau[order[i]];
+    if (trial_tau[1] > trial_tau[0])
+      std::swap(order[0], order[1]);
+    if (trial_tau[2] > trial_tau[order[1]])
+      {
+        order[2] = order[1];
+        order[1] = 2;
+        if (trial_tau[2] > trial_tau[order[0]])
+          std::swap(order[0], order[1]);
+      }
+    const Tensor<1, 3> sigma_trial({trial_tau[order[0]],
+                                    trial_tau[order[1]],
+                                    trial_tau[order[2]]});
     const unsigned int    n_planes = surfaces.size();
     std::array<double, 6> violation;
     double                largest  = -std::numeric_limits<double>::max();
@@ -231,9 +286,16 @@ namespace mpm
     r.plastic = true;
 
     const double tolerance = 1e-12 * (surfaces[0].r + sigma_trial.norm() + 1.);
-    auto admissible = [&](const Tensor<1, 3> &s) {
+    // Without a cut-off every set tried below holds the main plane,
+    // k s_1 - s_3 = sigma_c, and in the ordered frame that bounds the other
+    // two (k s_2 - s_3 and k s_1 - s_2 are at most k s_1 - s_3, as k > 0):
+    // the order is all that is left to check.
+    const bool order_implies_planes = n_planes == 3;
+    auto       admissible           = [&](const Tensor<1, 3> &s) {
       if (s[0] < s[1] - tolerance || s[1] < s[2] - tolerance)
         return false;
+      if (order_implies_planes)
+        return true;
       for (const Plane &plane : surfaces)
         if (plane.a * s - plane.r > tolerance)
           return false;
@@ -243,101 +305,81 @@ namespace mpm
     Tensor<1, 3> sigma;
     Tensor<2, 3> tangent;
     Tensor<1, 3> plastic_strain_step;
-    // What every trial below needs, per plane: D b and the scale of
-    // a . D b, and D a for the tangent. Fixed sizes throughout: the
-    // explicit scheme returns most points of a flowing granular body every
-    // step, and allocations dominated it.
-    std::array<Tensor<1, 3>, 6> Db, Da;
-    std::array<double, 6>       norm;
-    for (unsigned int i = 0; i < n_planes; ++i)
-      {
-        Db[i]   = D * surfaces[i].b;
-        norm[i] = surfaces[i].a.norm() * Db[i].norm();
-        if (with_tangent)
-          Da[i] = D * surfaces[i].a;
-      }
-
-    // The return to the n planes `active`: true if it is admissible.
-    auto return_to = [&](const std::array<unsigned int, 3> &active,
-                         const unsigned int                 n) {
-      // M_ij = a_i . D b_j of the n planes, inverted in closed form for
-      // n = 1 and 2.
-      Tensor<2, 3> M, M_inverse;
-      double       scale = 1.;
-      for (unsigned int i = 0; i < n; ++i)
-        {
-          scale *= norm[active[i]];
-          for (unsigned int j = 0; j < n; ++j)
-            M[i][j] = surfaces[active[i]].a * Db[active[j]];
-        }
-      const double det = n == 1 ? M[0][0] :
-                         n == 2 ? M[0][0] * M[1][1] - M[0][1] * M[1][0] :
-                                  determinant(M);
-      if (std::abs(det) <= 1e-10 * scale)
-        return false;
-      if (n == 1)
-        M_inverse[0][0] = 1. / det;
-      else if (n == 2)
-        {
-          M_inverse[0][0] = M[1][1] / det;
-          M_inverse[0][1] = -M[0][1] / det;
-          M_inverse[1][0] = -M[1][0] / det;
-          M_inverse[1][1] = M[0][0] / det;
-        }
-      else
-        M_inverse = invert(M);
-      std::array<double, 3> gamma     = {};
-      Tensor<1, 3>          s         = sigma_trial;
-      for (unsigned int i = 0; i < n; ++i)
-        {
-          for (unsigned int j = 0; j < n; ++j)
-            gamma[i] += M_inverse[i][j] * violation[active[j]];
-          if (gamma[i] * (lambda + 2. * mu) < -tolerance)
-            return false;
-          s -= gamma[i] * Db[active[i]];
-        }
-      if (!admissible(s))
-        return false;
-      sigma               = s;
-      plastic_strain_step = Tensor<1, 3>();
-      for (unsigned int i = 0; i < n; ++i)
-        plastic_strain_step += gamma[i] * surfaces[active[i]].b;
-      if (with_tangent)
-        {
-          tangent = D;
-          for (unsigned int i = 0; i < n; ++i)
-            for (unsigned int j = 0; j < n; ++j)
-              tangent -=
-                M_inverse[i][j] * outer_product(Db[active[i]], Da[active[j]]);
-        }
-      return true;
-    };
-
-    // Fewest planes first: one, then the lines of two, the points of three.
-    // Without a tension cut-off the stress can rest only on the main plane
-    // 0 (k s_1 - s_3 = sigma_c), on its edges with plane 1 (s_1 = s_2) or
-    // plane 2 (s_2 = s_3), or on all three: plane 1 or 2 alone, or the two
-    // together, leave plane 0 violated unless two stresses are equal, where
-    // the edge holds them too. The explicit scheme returns most points of a
-    // flowing granular body every step, so the sets that cannot hold are
-    // not tried.
+    // The first set of planes whose return is admissible. Plain arrays and
+    // the planes' own D b throughout, and no call per set: the explicit
+    // scheme returns most points of a flowing granular body every step.
     bool done = false;
-    if (n_planes == 3)
+    for (const ActiveSet &set : active_sets)
       {
-        done = return_to({{0, 0, 0}}, 1) || return_to({{0, 1, 0}}, 2) ||
-               return_to({{0, 2, 0}}, 2) || return_to({{0, 1, 2}}, 3);
-      }
-    else
-      {
-        for (unsigned int i = 0; i < n_planes && !done; ++i)
-          done = return_to({{i, 0, 0}}, 1);
-        for (unsigned int i = 0; i < n_planes && !done; ++i)
-          for (unsigned int j = i + 1; j < n_planes && !done; ++j)
-            done = return_to({{i, j, 0}}, 2);
-        for (unsigned int i = 0; i < n_planes && !done; ++i)
-          for (unsigned int j = i + 1; j < n_planes && !done; ++j)
-            for (unsigned int l = j + 1; l < n_planes && !done; ++l)
-              done = return_to({{i, j, l}}, 3);
+        const std::array<unsigned int, 3> &active = set.planes;
+        const unsigned int                  n      = set.n;
+        // M_ij = a_i . D b_j of the n planes, inverted in closed form for
+        // n = 1 and 2.
+        double M[3][3], M_inverse[3][3];
+        double scale = 1.;
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            scale *= surfaces[active[i]].scale;
+            for (unsigned int j = 0; j < n; ++j)
+              M[i][j] = surfaces[active[i]].a * surfaces[active[j]].Db;
+          }
+        double det;
+        if (n == 1)
+          {
+            det             = M[0][0];
+            M_inverse[0][0] = 1. / det;
+          }
+        else if (n == 2)
+          {
+            det             = M[0][0] * M[1][1] - M[0][1] * M[1][0];
+            M_inverse[0][0] = M[1][1] / det;
+            M_inverse[0][1] = -M[0][1] / det;
+            M_inverse[1][0] = -M[1][0] / det;
+            M_inverse[1][1] = M[0][0] / det;
+          }
+        else
+          {
+            Tensor<2, 3> full;
+            for (unsigned int i = 0; i < 3; ++i)
+              for (unsigned int j = 0; j < 3; ++j)
+                full[i][j] = M[i][j];
+            det = determinant(full);
+            if (det != 0.)
+              full = invert(full);
+            for (unsigned int i = 0; i < 3; ++i)
+              for (unsigned int j = 0; j < 3; ++j)
+                M_inverse[i][j] = full[i][j];
+          }
+        if (std::abs(det) <= 1e-10 * scale)
+          continue;
+        double       gamma[3];
+        bool         flows = true;
+        Tensor<1, 3> s     = sigma_trial;
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            gamma[i] = 0.;
+            for (unsigned int j = 0; j < n; ++j)
+              gamma[i] += M_inverse[i][j] * violation[active[j]];
+            flows = flows && gamma[i] * (lambda + 2. * mu) >= -tolerance;
+            s -= gamma[i] * surfaces[active[i]].Db;
+          }
+        if (!flows || !admissible(s))
+          continue;
+        sigma               = s;
+        plastic_strain_step = gamma[0] * surfaces[active[0]].b;
+        for (unsigned int i = 1; i < n; ++i)
+          plastic_strain_step += gamma[i] * surfaces[active[i]].b;
+        if (with_tangent)
+          {
+            tangent = principal_stiffness;
+            for (unsigned int i = 0; i < n; ++i)
+              for (unsigned int j = 0; j < n; ++j)
+                tangent -= M_inverse[i][j] *
+                           outer_product(surfaces[active[i]].Db,
+                                         surfaces[active[j]].Da);
+          }
+        done = true;
+        break;
       }
     // The apex, where the flow of the planes (psi = 0: deviatoric) cannot
     // reach: the stress goes to it and the rest of the step is plastic.

@@ -58,7 +58,7 @@ namespace mpm
     Return r;
     r.tau = trial_tau;
     if (with_tangent)
-      r.tangent = principal_stiffness();
+      r.tangent = principal_stiffness;
     const double f = yield_function(trial_tau, plastic_strain);
     if (f <= 0.)
       return r;

@@ -97,9 +97,11 @@ namespace mpm
                      const std::string &     name,
                      const std::string &     section_path);
 
-    /** The principal elastic stiffness: lambda + 2 mu on, lambda off. */
-    Tensor<2, 3>
-    principal_stiffness() const;
+    /**
+     * The principal elastic stiffness: lambda + 2 mu on, lambda off; kept,
+     * as every step of every point uses it.
+     */
+    Tensor<2, 3> principal_stiffness;
 
     /** Its inverse, kept: an elastic strain per plastic return. */
     Tensor<2, 3> principal_compliance;

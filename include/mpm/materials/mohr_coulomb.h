@@ -55,12 +55,25 @@ namespace mpm
                    double              plastic_strain) const override;
 
   private:
-    /** A yield plane a . sigma <= r with flow direction b. */
+    /**
+     * A yield plane a . sigma <= r with flow direction b, and what every
+     * return to it needs, worked out with the plane: D b, D a (for the
+     * tangent) and |a| |D b|, the scale of a . D b, with D the principal
+     * elastic stiffness.
+     */
     struct Plane
     {
+      Plane(const Tensor<1, 3> &a,
+            const Tensor<1, 3> &b,
+            double              r,
+            const Tensor<2, 3> &D);
+
       Tensor<1, 3> a;
       Tensor<1, 3> b;
       double       r;
+      Tensor<1, 3> Db;
+      Tensor<1, 3> Da;
+      double       scale;
     };
 
     /**
@@ -98,6 +111,19 @@ namespace mpm
     double tensile_strength;
     /** The planes before any softening, kept: their sines are not cheap. */
     Planes peak_planes;
+
+    /** A set of planes a return may rest on: their indices and number. */
+    struct ActiveSet
+    {
+      std::array<unsigned int, 3> planes;
+      unsigned int                n;
+    };
+
+    /**
+     * The sets a return tries, in order; the first admissible one is the
+     * return. Softening changes the planes, not their sets.
+     */
+    boost::container::static_vector<ActiveSet, 41> active_sets;
   };
 } // namespace mpm
 
