@@ -38,10 +38,32 @@ namespace mpm
   LinearElastic::jaumann_rotation(const Tensor<2, 3> &         L,
                                   const SymmetricTensor<2, 3> &stress)
   {
-    const Tensor<2, 3> W = 0.5 * (L - transpose(L));
-    const Tensor<2, 3> sigma(stress);
-    // W sigma - sigma W is symmetric for symmetric sigma and skew W.
-    return symmetrize(Tensor<2, 3>(W * sigma - sigma * W));
+    // For symmetric sigma and skew W, sigma W = -(W sigma)^T, so
+    // W sigma - sigma W = A + A^T with A = W sigma, and W has three
+    // entries: written out, a third of the products of two full 3 x 3
+    // ones, with the same digits (the terms dropped are W_ii = 0).
+    const double w01 = 0.5 * (L[0][1] - L[1][0]);
+    const double w02 = 0.5 * (L[0][2] - L[2][0]);
+    const double w12 = 0.5 * (L[1][2] - L[2][1]);
+    const double s00 = stress[0][0], s11 = stress[1][1], s22 = stress[2][2];
+    const double s01 = stress[0][1], s02 = stress[0][2], s12 = stress[1][2];
+    const double A00 = w01 * s01 + w02 * s02;
+    const double A11 = -w01 * s01 + w12 * s12;
+    const double A22 = -w02 * s02 - w12 * s12;
+    const double A01 = w01 * s11 + w02 * s12;
+    const double A10 = -w01 * s00 + w12 * s02;
+    const double A02 = w01 * s12 + w02 * s22;
+    const double A20 = -w02 * s00 - w12 * s01;
+    const double A12 = -w01 * s02 + w12 * s22;
+    const double A21 = -w02 * s01 - w12 * s11;
+    SymmetricTensor<2, 3> rotation;
+    rotation[0][0] = A00 + A00;
+    rotation[1][1] = A11 + A11;
+    rotation[2][2] = A22 + A22;
+    rotation[0][1] = A01 + A10;
+    rotation[0][2] = A02 + A20;
+    rotation[1][2] = A12 + A21;
+    return rotation;
   }
 
 
