@@ -138,40 +138,6 @@ namespace
 
 
   /**
-   * The largest gap, over rows, between the change of momentum since the
-   * start and the impulse sum dt (M g - F), F the force on the floor,
-   * relative to M g t. Summed from the start, so that the 12 digits of
-   * the time series' momentum do not limit it.
-   */
-  double
-  momentum_balance(mpm_tests::Columns &csv)
-  {
-    const double M   = csv["mass"][0];
-    double       gap = 0., impulse_x = 0., impulse_y = 0.;
-    for (unsigned int n = 1; n < csv["time"].size(); ++n)
-      {
-        const double dt = csv["dt"][n];
-        // The floor's outward normal is -y, its tangent (the normal turned
-        // by +90 degrees) is +x: the material's force on it is
-        // (T, -N), the floor's on the material (-T, N).
-        impulse_x +=
-          dt * (M * g * std::sin(theta) - csv["bottom_tangential_force"][n]);
-        impulse_y +=
-          dt * (-M * g * std::cos(theta) + csv["bottom_normal_force"][n]);
-        gap = std::max(
-          gap,
-          std::max(std::abs(csv["momentum_x"][n] - csv["momentum_x"][0] -
-                            impulse_x),
-                   std::abs(csv["momentum_y"][n] - csv["momentum_y"][0] -
-                            impulse_y)) /
-            (M * g * csv["time"][n]));
-      }
-    return gap;
-  }
-
-
-
-  /**
    * Check the traction files of a run; returns the number of files. The
    * Coulomb bound holds to `round_off` of the largest traction: 1e-12
    * for the explicit law, which sets it exactly; Newton's tolerance for
@@ -454,7 +420,7 @@ main(int argc, char **argv)
                        0.01);
     mpm_tests::check("mu = 0.2: momentum changes by the sum of dt (M g - wall force), "
                      "to 1e-9",
-                     momentum_balance(csv) < 1e-9);
+                     mpm_tests::floor_momentum_balance(csv, g, theta) < 1e-9);
     check_tractions("output-slide", 0.2, true, csv);
   }
 
@@ -485,7 +451,7 @@ main(int argc, char **argv)
                      bound < 1e-12 * csv["mass"][0] * g);
     mpm_tests::check("mu = 0.7: momentum changes by the sum of dt (M g - wall force), "
                      "to 1e-9",
-                     momentum_balance(csv) < 1e-9);
+                     mpm_tests::floor_momentum_balance(csv, g, theta) < 1e-9);
     check_tractions("output-stick", 0.7, false, csv);
   }
 

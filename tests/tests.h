@@ -265,6 +265,39 @@ namespace mpm_tests
               " 40 Newton iterations)",
             checks >= 40 && matching >= 0.9 * checks);
   }
+  /**
+   * A block on a floor y = const under gravity g tilted by theta towards
+   * +x (scenes/friction_block.prm): the largest gap, over rows, between the
+   * change of momentum since the start and the impulse sum dt (M g - F),
+   * F the force on the floor `bottom`,
+   * relative to M g t. Summed from the start, so that the 12 digits of
+   * the time series' momentum do not limit it.
+   */
+  inline double
+  floor_momentum_balance(Columns &csv, const double g, const double theta)
+  {
+    const double M   = csv["mass"][0];
+    double       gap = 0., impulse_x = 0., impulse_y = 0.;
+    for (unsigned int n = 1; n < csv["time"].size(); ++n)
+      {
+        const double dt = csv["dt"][n];
+        // The floor's outward normal is -y, its tangent (the normal turned
+        // by +90 degrees) is +x: the material's force on it is
+        // (T, -N), the floor's on the material (-T, N).
+        impulse_x +=
+          dt * (M * g * std::sin(theta) - csv["bottom_tangential_force"][n]);
+        impulse_y +=
+          dt * (-M * g * std::cos(theta) + csv["bottom_normal_force"][n]);
+        gap = std::max(
+          gap,
+          std::max(std::abs(csv["momentum_x"][n] - csv["momentum_x"][0] -
+                            impulse_x),
+                   std::abs(csv["momentum_y"][n] - csv["momentum_y"][0] -
+                            impulse_y)) /
+            (M * g * csv["time"][n]));
+      }
+    return gap;
+  }
 } // namespace mpm_tests
 
 #endif

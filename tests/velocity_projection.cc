@@ -22,9 +22,10 @@
 //   scenes/friction_block.prm (MUSL, pure PIC) on a Coulomb floor with
 //   gravity tilted by 30 degrees: with mu = 0.2 its centre of mass
 //   accelerates as the rigid block's g (sin 30 - mu cos 30) within 1 %,
-//   with mu = 0.7 it sticks (below 1e-4 m), and the floor's force stays in
-//   Coulomb's cone (1e-12 of the weight), as tests/friction_walls checks
-//   with the lumped mass.
+//   with mu = 0.7 it sticks (below 1e-4 m), the floor's force stays in
+//   Coulomb's cone (1e-12 of the weight), and the momentum changes by the
+//   impulse of gravity and that force (1e-9), as tests/friction_walls
+//   checks with the lumped mass.
 // - the vibrating bar of benchmarks.md section 7 on 16 cells, USF with CFL
 //   0.1: its period against that of the lumped-mass finite-element chain
 //   of the same cells, T x / sin(x), x = beta_1 h / 2 (the eigenvector is
@@ -274,7 +275,8 @@ namespace
    * An elastic block on a plane with Coulomb friction, gravity tilted by 30
    * degrees (scenes/friction_block.prm: MUSL, pure PIC), with the blended
    * mass: mu = 0.2 slides with the rigid block's g (sin 30 - mu cos 30),
-   * mu = 0.7 sticks, and the floor's force stays within Coulomb's cone.
+   * mu = 0.7 sticks, the floor's force stays within Coulomb's cone, and it
+   * is the force that moves the block.
    */
   void
   check_blended_mass_friction()
@@ -305,6 +307,12 @@ namespace
         const double weight = 1000. * 0.4 * 0.2 * g;
         mpm_tests::check("blended mass, friction floor: |T| <= mu N",
                          bound < 1e-12 * weight);
+        // The floor's law answers the blended change too, so the force it
+        // reports is the one that moves the block (Newton's third law).
+        mpm_tests::check("blended mass, friction floor: the momentum changes "
+                         "by sum dt (M g - F) to 1e-9 of M g t",
+                         mpm_tests::floor_momentum_balance(csv, g, theta) <
+                           1e-9);
         if (mu < 0.5)
           {
             const double ratio =

@@ -129,10 +129,7 @@ namespace mpm
   {
     const std::vector<unsigned int> &solve_nodes = nodes.nodes_to_solve();
     if (blended_mass)
-      {
-        size_values_aside(solve_nodes);
-        held.resize(values_aside.size() / dim);
-      }
+      size_values_aside(solve_nodes);
     for (const unsigned int node : solve_nodes)
       {
         double *     v = nodes.values_of(node);
@@ -167,12 +164,9 @@ namespace mpm
     const double m        = v[NodalLayout::mass];
     double *     a        = v + NodalLayout::force;
     double *     velocity = v + NodalLayout::velocity;
-    double       start[dim], lumped[dim];
+    double       start[dim];
     for (unsigned int d = 0; d < dim; ++d)
-      {
-        start[d]  = velocity[d];
-        lumped[d] = a[d];
-      }
+      start[d] = velocity[d];
     bool constrained = false;
     for (const NodalCondition<dim> *condition : conditions)
       if (condition->acts_on(node))
@@ -181,19 +175,12 @@ namespace mpm
           constrained = true;
         }
     if (blended_mass)
-      {
-        // The blended mass reads the acceleration the conditions leave,
-        // without the impulse below: in MUSL a held node starts from an
-        // unconstrained velocity, whose stop is no acceleration of the
-        // material. It keeps the node where they held it in this solve.
-        held[node] = false;
-        for (unsigned int d = 0; d < dim; ++d)
-          {
-            values_aside[node * dim + d] = a[d];
-            held[node] = held[node] || a[d] != lumped[d] ||
-                         velocity[d] != start[d];
-          }
-      }
+      // The blended mass reads the acceleration the conditions leave,
+      // without the impulse below: in MUSL a held node starts from an
+      // unconstrained velocity, whose stop is no acceleration of the
+      // material.
+      for (unsigned int d = 0; d < dim; ++d)
+        values_aside[node * dim + d] = a[d];
     for (unsigned int d = 0; d < dim; ++d)
       {
         // a takes the conditions' reaction impulse (velocity - start)
@@ -254,7 +241,7 @@ namespace mpm
             if (constrained)
               for (const NodalCondition<dim> *condition : conditions)
                 if (condition->acts_on(node))
-                  condition->constrain_change(node, held[node], change);
+                  condition->constrain_change(node, change);
           }
         for (unsigned int d = 0; d < dim; ++d)
           values[d] = values_kept[node * dim + d] + change[d];

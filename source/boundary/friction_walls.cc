@@ -253,6 +253,8 @@ namespace mpm
                                       walls[contacts[c].wall].friction,
                                       mass,
                                       dt);
+        reactions[c].solved = true;
+        reactions[c].law    = law;
         if (!law.active)
           continue;
         reactions[c].normal     = law.normal_force;
@@ -270,25 +272,18 @@ namespace mpm
   template <int dim>
   void
   FrictionWalls<dim>::constrain_change(const unsigned int node,
-                                       const bool,
-                                       double *change) const
+                                       double *           change) const
   {
     for (unsigned int c = first_contact[node]; c < first_contact[node + 1];
          ++c)
-      {
-        // A wall that did not press on the node in this solve lets it be.
-        if (!(reactions[c].normal > 0.))
-          continue;
-        const Tensor<1, dim> &n      = contacts[c].outward;
-        const double friction = walls[contacts[c].wall].friction;
-        const bool   sliding  = reactions[c].tangential.norm() >=
-                             (1. - 1e-12) * friction * reactions[c].normal;
-        double along_normal = 0.;
-        for (unsigned int d = 0; d < dim; ++d)
-          along_normal += change[d] * n[d];
-        for (unsigned int d = 0; d < dim; ++d)
-          change[d] = sliding ? change[d] - along_normal * n[d] : 0.;
-      }
+      if (reactions[c].solved)
+        {
+          const CoulombContact<dim> law =
+            reactions[c].law.follow_change(change);
+          reactions[c].law        = law;
+          reactions[c].normal     = law.normal_force;
+          reactions[c].tangential = law.tangential_force;
+        }
   }
 
 

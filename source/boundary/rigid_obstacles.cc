@@ -138,6 +138,7 @@ namespace mpm
     for (unsigned int k = 0; k < obstacles.size(); ++k)
       offsets[k] = obstacles[k].displacement_at(0.);
     reactions.clear();
+    first_reaction.clear();
   }
 
 
@@ -201,6 +202,7 @@ namespace mpm
         velocities[k] = (offsets[k] - start) / dt;
       }
     reactions.clear();
+    first_reaction.clear();
   }
 
 
@@ -248,14 +250,20 @@ namespace mpm
                                         obstacles[k].friction,
                                         mass,
                                         dt);
-          if (!law.active)
-            continue;
           Reaction reaction;
-          reaction.node       = node;
-          reaction.obstacle   = k;
+          reaction.node     = node;
+          reaction.obstacle = k;
+          reaction.law      = law;
+          first_reaction.emplace(node, reactions.size());
+          if (!law.active)
+            {
+              // Kept for the blended mass, whose change may press it in.
+              reactions.push_back(reaction);
+              continue;
+            }
           reaction.normal     = law.normal_force;
           reaction.tangential = law.tangential_force;
-          reaction.force      = mass * (relative - law.end) / dt;
+          reaction.force      = law.force();
           reactions.push_back(reaction);
           for (unsigned int d = 0; d < dim; ++d)
             {
@@ -263,6 +271,28 @@ namespace mpm
               acceleration[d] = 0.;
             }
         }
+  }
+
+
+
+  template <int dim>
+  void
+  RigidObstacles<dim>::constrain_change(const unsigned int node,
+                                        double *           change) const
+  {
+    const auto first = first_reaction.find(node);
+    if (first == first_reaction.end())
+      return;
+    for (unsigned int r = first->second;
+         r < reactions.size() && reactions[r].node == node;
+         ++r)
+      {
+        Reaction &reaction  = reactions[r];
+        reaction.law        = reaction.law.follow_change(change);
+        reaction.normal     = reaction.law.normal_force;
+        reaction.tangential = reaction.law.tangential_force;
+        reaction.force      = reaction.law.force();
+      }
   }
 
 
@@ -321,7 +351,8 @@ namespace mpm
       {
         std::vector<std::array<double, dim + 2>> rows;
         for (const Reaction &reaction : reactions)
-          if (reaction.obstacle == k && reaction.node < n_owned)
+          if (reaction.obstacle == k && reaction.node < n_owned &&
+              reaction.normal > 0.)
             {
               std::array<double, dim + 2> row;
               for (unsigned int d = 0; d < dim; ++d)

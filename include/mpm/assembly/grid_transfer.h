@@ -261,7 +261,7 @@ namespace mpm
      * factor (w - M_L^-1 M_C w) is added to the `dim` components from
      * `component` on, then handed to after_change(node, change). If
      * `constrained`, each node's change first passes through the conditions
-     * on it, as in a consistent solve with what they hold held
+     * on it, which take what they forbid and report the force of it
      * (NodalCondition::constrain_change()). Nodes without mass keep their
      * values. factor 1 is one Jacobi step from a lumped solve M_L w = r
      * towards M_C w = r; for a smooth mode of wave number k on a uniform 1D
@@ -356,11 +356,6 @@ namespace mpm
     std::vector<double> values_aside;
     /** dim values per node: what a corrected component held before. */
     std::vector<double> values_kept;
-    /**
-     * Per node, with the blended mass: whether a nodal condition changed
-     * its velocity or acceleration in this solve.
-     */
-    std::vector<bool> held;
   };
 } // namespace mpm
 

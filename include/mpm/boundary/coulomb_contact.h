@@ -35,12 +35,20 @@ namespace mpm
     /** The rest of that force, across `into_wall`. */
     Tensor<1, dim> tangential_force;
 
+    /** No contact. */
+    CoulombContact() = default;
+
     CoulombContact(const Tensor<1, dim> &relative,
                    const Tensor<1, dim> &into_wall,
                    const double          friction,
                    const double          mass,
                    const double          dt)
       : end(relative)
+      , relative(relative)
+      , into_wall(into_wall)
+      , friction(friction)
+      , mass(mass)
+      , dt(dt)
     {
       const double v_n = relative * into_wall;
       if (!(v_n > 0.))
@@ -54,6 +62,41 @@ namespace mpm
       normal_force     = mass * v_n / dt;
       tangential_force = mass * (v_t - end) / dt;
     }
+
+    /** The force of the material on the wall, m (relative - end) / dt. */
+    Tensor<1, dim>
+    force() const
+    {
+      return mass * (relative - end) / dt;
+    }
+
+    /**
+     * The blended mass changes the node's acceleration by `change` after
+     * the nodal solve that gave this law: the same wall again, from the
+     * relative velocity moved by dt change, so that its force and its
+     * stick or slip follow the change (the wall lets the node go where it
+     * no longer presses). `change` becomes what the node keeps of it,
+     * (the new end - end) / dt.
+     */
+    CoulombContact
+    follow_change(double *change) const
+    {
+      Tensor<1, dim> moved = relative;
+      for (unsigned int d = 0; d < dim; ++d)
+        moved[d] += dt * change[d];
+      const CoulombContact law(moved, into_wall, friction, mass, dt);
+      for (unsigned int d = 0; d < dim; ++d)
+        change[d] = (law.end[d] - end[d]) / dt;
+      return law;
+    }
+
+  private:
+    /** What the law was given, for follow_change(). */
+    Tensor<1, dim> relative;
+    Tensor<1, dim> into_wall;
+    double         friction = 0.;
+    double         mass     = 0.;
+    double         dt       = 1.;
   };
 } // namespace mpm
 

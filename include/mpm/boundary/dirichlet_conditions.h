@@ -92,8 +92,7 @@ namespace mpm
 
     void
     constrain_change(const unsigned int node,
-                     const bool,
-                     double *change) const override
+                     double *           change) const override
     {
       apply(node, change);
     }

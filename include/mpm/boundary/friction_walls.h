@@ -4,6 +4,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/tensor.h>
 
+#include <mpm/boundary/coulomb_contact.h>
 #include <mpm/boundary/nodal_condition.h>
 #include <mpm/grid/grid.h>
 
@@ -112,14 +113,16 @@ namespace mpm
                        const double       time) const override;
 
     /**
-     * The blended mass's change at a node that a wall held in this solve:
-     * never into or out of the wall, and not along it where the node
-     * sticks; a sliding node takes the change along the wall, since its
-     * friction is a given force there.
+     * The blended mass's change at a node of a wall that stood in this
+     * solve: each wall's Coulomb law again, from the velocity the node
+     * would reach with the change (CoulombContact::follow_change), so that
+     * the reported force, and the stick or slip, are those of the
+     * corrected motion. A sticking node stays put while the change keeps
+     * it inside the friction cone, a sliding one takes the change along the
+     * wall less the friction's answer to the change of the normal force.
      */
     void
     constrain_change(const unsigned int node,
-                     const bool         held,
                      double *           change) const override;
 
     /** The node's walls, in the order of the entry. */
@@ -218,11 +221,17 @@ namespace mpm
       Point<dim> position;
     };
 
-    /** The force of the material on the wall at one contact. */
+    /**
+     * The force of the material on the wall at one contact, and in an
+     * explicit solve the law that gave it (inactive where the wall did not
+     * stand).
+     */
     struct Reaction
     {
-      double         normal = 0.;
-      Tensor<1, dim> tangential;
+      double              normal = 0.;
+      Tensor<1, dim>      tangential;
+      bool                solved = false;
+      CoulombContact<dim> law;
     };
 
     /** Per wall: the total force vector from owned nodes, on this rank. */

@@ -70,21 +70,15 @@ namespace mpm
     constrain_velocity(const unsigned int node, double *velocity) const = 0;
 
     /**
-     * Remove what the condition forbids from a change of a node's explicit
-     * acceleration made after constrain_explicit() (the blended mass), in
-     * place; `held` says whether the conditions on the node changed its
-     * velocity or acceleration in that solve. By default a held node keeps
-     * what the condition gave it, and a node it let be takes the change.
-     * A condition that is a fixed linear projection of the velocity
-     * applies that projection.
+     * Answer a change of a node's explicit acceleration made after
+     * constrain_explicit() (the blended mass), in place: what the
+     * condition forbids goes, and what it reports (a wall's force) follows
+     * what it takes. A fixed linear projection of the velocity applies
+     * that projection; a wall its law again, from the velocity the node
+     * would reach with the change.
      */
     virtual void
-    constrain_change(const unsigned int, const bool held, double *change) const
-    {
-      if (held)
-        for (unsigned int d = 0; d < dim; ++d)
-          change[d] = 0.;
-    }
+    constrain_change(const unsigned int node, double *change) const = 0;
 
     /**
      * The acceleration of a node at the start of a Newmark run, given its

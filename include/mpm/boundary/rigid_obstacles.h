@@ -6,11 +6,13 @@
 #include <deal.II/base/tensor.h>
 
 #include <mpm/base/shape.h>
+#include <mpm/boundary/coulomb_contact.h>
 #include <mpm/boundary/nodal_condition.h>
 #include <mpm/grid/grid.h>
 
 #include <memory>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace mpm
@@ -75,6 +77,15 @@ namespace mpm
     constrain_velocity(const unsigned int node,
                        double *           velocity) const override;
 
+    /**
+     * The blended mass's change at a node in an obstacle: the obstacle's
+     * Coulomb law again, from the velocity the node would reach with the
+     * change (CoulombContact::follow_change).
+     */
+    void
+    constrain_change(const unsigned int node,
+                     double *           change) const override;
+
     /** Place the obstacles at t + dt, with their velocity over the step. */
     void
     begin_explicit_solve(const double time, const double dt) const override;
@@ -135,14 +146,19 @@ namespace mpm
       displacement_at(const double t) const;
     };
 
-    /** One obstacle at one node, as measured by the last nodal solve. */
+    /**
+     * One obstacle at one node that lies in it, as measured by the last
+     * nodal solve, with the law that gave it (inactive where the node did
+     * not press on it).
+     */
     struct Reaction
     {
-      unsigned int   node;
-      unsigned int   obstacle;
-      double         normal = 0.;
-      Tensor<1, dim> tangential;
-      Tensor<1, dim> force;
+      unsigned int        node;
+      unsigned int        obstacle;
+      double              normal = 0.;
+      Tensor<1, dim>      tangential;
+      Tensor<1, dim>      force;
+      CoulombContact<dim> law;
     };
 
     /**
@@ -165,6 +181,8 @@ namespace mpm
     mutable std::vector<Tensor<1, dim>> offsets;
     mutable std::vector<Tensor<1, dim>> velocities;
     mutable std::vector<Reaction>       reactions;
+    /** Where the reactions of a node start (they follow each other). */
+    mutable std::unordered_map<unsigned int, unsigned int> first_reaction;
 
     /**
      * Whether setup() has checked the obstacles against a grid. An adaptive
