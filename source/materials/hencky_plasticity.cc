@@ -121,6 +121,9 @@ namespace mpm
     // the kinematics give as I + dt L (no inverse).
     const Tensor<2, 3> f = Tensor<2, 3>(unit_symmetric_tensor<3>()) +
                            kinematics.dt * kinematics.velocity_gradient;
+    Assert((f * kinematics.F_old - kinematics.F_new).norm() <=
+             1e-8 * kinematics.F_new.norm(),
+           ExcMessage("StepKinematics: F_new is not (I + dt L) F_old."));
 
     Step step;
     step.b_trial     = push_forward(f, b_old);

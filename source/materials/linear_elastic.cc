@@ -41,7 +41,8 @@ namespace mpm
     // For symmetric sigma and skew W, sigma W = -(W sigma)^T, so
     // W sigma - sigma W = A + A^T with A = W sigma, and W has three
     // entries: written out, a third of the products of two full 3 x 3
-    // ones, with the same digits (the terms dropped are W_ii = 0).
+    // ones, with the same values (the terms dropped are W_ii = 0; an
+    // exact zero may come out as -0).
     const double w01 = 0.5 * (L[0][1] - L[1][0]);
     const double w02 = 0.5 * (L[0][2] - L[2][0]);
     const double w12 = 0.5 * (L[1][2] - L[2][1]);

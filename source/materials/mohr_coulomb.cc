@@ -179,7 +179,8 @@ namespace mpm
     , r(r)
     , Db(D * b)
     , Da(D * a)
-    , scale(a.norm() * Db.norm())
+    , a_norm(a.norm())
+    , scale(a_norm * Db.norm())
   {}
 
 
@@ -297,7 +298,8 @@ namespace mpm
       if (order_implies_planes)
         return true;
       for (const Plane &plane : surfaces)
-        if (plane.a * s - plane.r > tolerance)
+        // The round-off of a . s grows with |a| (k: 131 at phi = 80).
+        if (plane.a * s - plane.r > tolerance * plane.a_norm)
           return false;
       return true;
     };
@@ -360,7 +362,7 @@ namespace mpm
             gamma[i] = 0.;
             for (unsigned int j = 0; j < n; ++j)
               gamma[i] += M_inverse[i][j] * violation[active[j]];
-            flows = flows && gamma[i] * (lambda + 2. * mu) >= -tolerance;
+            flows = flows && !(gamma[i] * (lambda + 2. * mu) < -tolerance);
             s -= gamma[i] * surfaces[active[i]].Db;
           }
         if (!flows || !admissible(s))

@@ -85,8 +85,11 @@ namespace mpm
       for (unsigned int d = 0; d < dim; ++d)
         moved[d] += dt * change[d];
       const CoulombContact law(moved, into_wall, friction, mass, dt);
-      for (unsigned int d = 0; d < dim; ++d)
-        change[d] = (law.end[d] - end[d]) / dt;
+      // A wall that acts neither before nor after leaves the change as it
+      // is, not as the round-off of (moved - relative) / dt.
+      if (active || law.active)
+        for (unsigned int d = 0; d < dim; ++d)
+          change[d] = (law.end[d] - end[d]) / dt;
       return law;
     }
 

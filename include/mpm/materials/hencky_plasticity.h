@@ -9,7 +9,8 @@ namespace mpm
    * Elastoplasticity at finite strain by the multiplicative split
    * F = F_e F_p with Hencky elasticity, integrated by the exponential map
    * (Simo 1992): the trial elastic left Cauchy-Green tensor
-   * b_e = f b_e,n f^T, f = F_new F_old^-1, gives principal logarithmic
+   * b_e = f b_e,n f^T, f = F_new F_old^-1 = I + dt L (as StepKinematics
+   * defines L; the latter, with no inverse), gives principal logarithmic
    * strains eps_a = ln(lambda_a); the Kirchhoff stress tau_a = D eps_a is
    * linear in them, so a law returns its principal trial stress to the
    * yield surface exactly as in small strain ("return_to_yield_surface"),

@@ -58,8 +58,8 @@ namespace mpm
     /**
      * A yield plane a . sigma <= r with flow direction b, and what every
      * return to it needs, worked out with the plane: D b, D a (for the
-     * tangent) and |a| |D b|, the scale of a . D b, with D the principal
-     * elastic stiffness.
+     * tangent), |a| and |a| |D b|, the scale of a . D b, with D the
+     * principal elastic stiffness.
      */
     struct Plane
     {
@@ -73,6 +73,7 @@ namespace mpm
       double       r;
       Tensor<1, 3> Db;
       Tensor<1, 3> Da;
+      double       a_norm;
       double       scale;
     };
 
