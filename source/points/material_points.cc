@@ -1,4 +1,5 @@
 #include <deal.II/base/mpi.h>
+#include <deal.II/fe/mapping_cartesian.h>
 #include <deal.II/grid/grid_tools.h>
 
 #include <boost/archive/binary_iarchive.hpp>
@@ -12,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace mpm
@@ -233,7 +235,12 @@ namespace mpm
     const types::particle_index removed_before = removed_points();
     if (implicit_steps)
       carry_far_points();
-    particle_handler.sort_particles_into_subdomains_and_cells();
+    if (!sort_within_rank())
+      {
+        particle_handler.sort_particles_into_subdomains_and_cells();
+        moved_since_layout = 0;
+        ++pool_layouts;
+      }
 
     const unsigned int n_lost =
       Utilities::MPI::sum(static_cast<unsigned int>(lost_positions.size()),
@@ -262,6 +269,170 @@ namespace mpm
       throw RunError("Sorting the material points lost " +
                      std::to_string(n_before - n_after) +
                      " of them between ranks (an internal error).");
+  }
+
+
+
+  template <int dim>
+  bool
+  MaterialPoints<dim>::sort_within_rank()
+  {
+    using particle_iterator =
+      typename Particles::ParticleHandler<dim>::particle_iterator;
+    // The reference location of every point as deal.II's sort finds it,
+    // and the points outside their cells. The points are visited cell by
+    // cell in the handler's order, so empty cells cost nothing; on a grid of
+    // axis-aligned boxes the reference location is MappingCartesian's, in
+    // its arithmetic (so to the bit), from the cell geometry the grid
+    // keeps.
+    const bool boxes =
+      dynamic_cast<const MappingCartesian<dim> *>(&mapping) != nullptr;
+    std::vector<particle_iterator> leavers;
+    std::vector<Point<dim>>        leaver_references;
+    std::vector<Point<dim>>        x, X;
+    const auto classify = [&](particle_iterator &point,
+                              const Point<dim> & reference) {
+      if (reference[0] == std::numeric_limits<double>::infinity() ||
+          !GeometryInfo<dim>::is_inside_unit_cell(reference))
+        {
+          leavers.push_back(point);
+          leaver_references.push_back(reference);
+        }
+      else
+        point->set_reference_location(reference);
+      ++point;
+    };
+    for (auto point = particle_handler.begin();
+         point != particle_handler.end();)
+      {
+        const auto         cell = point->get_surrounding_cell();
+        const unsigned int n    = particle_handler.n_particles_in_cell(cell);
+        if (boxes)
+          {
+            const auto &vertices =
+              grid.cell_geometry(cell->active_cell_index()).vertices;
+            for (unsigned int k = 0; k < n; ++k)
+              {
+                Point<dim> reference = point->get_location();
+                for (unsigned int d = 0; d < dim; ++d)
+                  reference[d] -= vertices[0][d];
+                for (unsigned int d = 0; d < dim; ++d)
+                  reference[d] /= vertices[1u << d][d] - vertices[0][d];
+                classify(point, reference);
+              }
+            continue;
+          }
+        x.clear();
+        for (auto p = point; x.size() < n; ++p)
+          x.push_back(p->get_location());
+        X.resize(n);
+        mapping.transform_points_real_to_unit_cell(cell, x, X);
+        for (const Point<dim> &reference : X)
+          classify(point, reference);
+      }
+
+    std::vector<
+      std::pair<typename Triangulation<dim>::active_cell_iterator, Point<dim>>>
+      destinations;
+    bool all_found = true;
+    for (unsigned int k = 0; k < leavers.size() && all_found; ++k)
+      {
+        destinations.push_back(walk_to_cell(leavers[k]->get_surrounding_cell(),
+                                            leaver_references[k],
+                                            leavers[k]->get_location()));
+        all_found = destinations.back().first.state() == IteratorState::valid;
+      }
+    moved_since_layout += leavers.size();
+    const bool lay_out_again =
+      moved_since_layout > particle_handler.n_locally_owned_particles() / 4;
+    if (Utilities::MPI::logical_or(!all_found || lay_out_again,
+                                   get_communicator()))
+      return false;
+    // Insert each point into its new cell, then remove it from its old one,
+    // as deal.II does: the order of the points in every cell, and so of
+    // every sum over them, is deal.II's. The room for the copies is made
+    // first (at most twice the movers of a step), so that the pool grows
+    // by that, not by doubling.
+    particle_handler.reserve(
+      particle_handler.get_property_pool().n_registered_slots() +
+      2 * leavers.size());
+    std::vector<double> properties(
+      particle_handler.n_properties_per_particle());
+    for (unsigned int k = 0; k < leavers.size(); ++k)
+      {
+        const ArrayView<const double> p = leavers[k]->get_properties();
+        std::copy(p.begin(), p.end(), properties.begin());
+        particle_handler.insert_particle(leavers[k]->get_location(),
+                                         destinations[k].second,
+                                         leavers[k]->get_id(),
+                                         destinations[k].first,
+                                         properties);
+      }
+    // Also with no leavers here: it counts the points, with every rank.
+    particle_handler.remove_particles(leavers);
+    return true;
+  }
+
+
+
+  template <int dim>
+  std::pair<typename Triangulation<dim>::active_cell_iterator, Point<dim>>
+  MaterialPoints<dim>::walk_to_cell(
+    typename Triangulation<dim>::active_cell_iterator cell,
+    Point<dim>                                        reference,
+    const Point<dim> &                                x) const
+  {
+    const typename Triangulation<dim>::active_cell_iterator nowhere =
+      triangulation.end();
+    for (unsigned int hop = 0; hop < 2 * dim; ++hop)
+      {
+        // Across the face beyond which x lies furthest.
+        if (reference[0] == std::numeric_limits<double>::infinity())
+          return {nowhere, reference};
+        unsigned int face   = numbers::invalid_unsigned_int;
+        double       beyond = 0.;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            if (-reference[d] > beyond)
+              {
+                beyond = -reference[d];
+                face   = 2 * d;
+              }
+            if (reference[d] - 1. > beyond)
+              {
+                beyond = reference[d] - 1.;
+                face   = 2 * d + 1;
+              }
+          }
+        if (face == numbers::invalid_unsigned_int || cell->at_boundary(face))
+          return {nowhere, reference};
+        typename Triangulation<dim>::cell_iterator next = cell->neighbor(face);
+        // A finer neighbour: the child on x's side in each direction (the
+        // children of a hypercube are numbered so), down to an active one.
+        Point<dim>                        X_in[1];
+        const ArrayView<const Point<dim>> x_view(&x, 1);
+        const ArrayView<Point<dim>>       X_view(X_in, 1);
+        while (next->has_children())
+          {
+            mapping.transform_points_real_to_unit_cell(next, x_view, X_view);
+            if (X_in[0][0] == std::numeric_limits<double>::infinity())
+              return {nowhere, reference};
+            unsigned int child = 0;
+            for (unsigned int d = 0; d < dim; ++d)
+              if (X_in[0][d] >= 0.5)
+                child |= 1u << d;
+            next = next->child(child);
+          }
+        if (!next->is_locally_owned())
+          return {nowhere, reference};
+        cell = next;
+        mapping.transform_points_real_to_unit_cell(cell, x_view, X_view);
+        reference = X_in[0];
+        if (reference[0] != std::numeric_limits<double>::infinity() &&
+            GeometryInfo<dim>::is_inside_unit_cell(reference))
+          return {cell, reference};
+      }
+    return {nowhere, reference};
   }
 
 

@@ -85,6 +85,16 @@ namespace mpm
     void
     sort();
 
+    /**
+     * How often sort() has left the work to deal.II's sort, which also
+     * lays the property pool out again in cell order (sort_within_rank()).
+     */
+    unsigned int
+    n_pool_layouts() const
+    {
+      return pool_layouts;
+    }
+
     Particles::ParticleHandler<dim> &
     handler()
     {
@@ -195,6 +205,31 @@ namespace mpm
     void
     carry_far_points();
 
+    /**
+     * The sort when every point that left its cell stays on this rank and
+     * in a cell next to its old one (collective; returns false, having
+     * changed nothing but reference locations, where some point on some
+     * rank does not, or where the pool is due to be laid out again).
+     * deal.II's sort copies every point's properties into cell order at
+     * every call; this one moves only the points that changed cells, in the
+     * order deal.II would (so every sum over points is the same), and
+     * leaves the copy to deal.II's sort once a quarter of the points have
+     * moved since.
+     */
+    bool
+    sort_within_rank();
+
+    /**
+     * The active cell that holds x, walking from `cell` across the faces
+     * through which x lies outside (at most 2 dim of them), with x's
+     * reference location there; an invalid iterator if the walk leaves the
+     * rank's cells or the grid.
+     */
+    std::pair<typename Triangulation<dim>::active_cell_iterator, Point<dim>>
+    walk_to_cell(typename Triangulation<dim>::active_cell_iterator cell,
+                 Point<dim>                                        reference,
+                 const Point<dim> &                                x) const;
+
     /** Whether x lies beyond an outflow face of `cell`. */
     bool
     leaves_through_outflow(
@@ -219,6 +254,10 @@ namespace mpm
     /** What left through the outflow boundaries from this rank. */
     double                          local_removed_mass   = 0.;
     types::particle_index           local_removed_points = 0;
+
+    /** Points moved between cells since deal.II last sorted the pool. */
+    types::particle_index moved_since_layout = 0;
+    unsigned int          pool_layouts       = 0;
 
     /** Between Grid::before_change and Grid::changed. */
     bool                                 grid_changing = false;
