@@ -33,19 +33,6 @@ using namespace dealii;
 using namespace mpm;
 
 template <int dim>
-Point<dim>
-distort(const Point<dim> &p)
-{
-  // Smooth and one-to-one on [0,1]^dim, so cells become general
-  // quadrilaterals (hexahedra) and the boundary stays put.
-  Point<dim> q = p;
-  for (unsigned int d = 0; d < dim; ++d)
-    q[d] += 0.06 * std::sin(numbers::PI * p[(d + 1) % dim]) *
-            std::sin(2 * numbers::PI * p[d]);
-  return q;
-}
-
-template <int dim>
 void
 test(const GridShapeFunctions kind)
 {
@@ -72,7 +59,7 @@ test(const GridShapeFunctions kind)
   Grid<dim> grid(prm, comm);
   grid.create();
   if (linear)
-    grid.transform(&distort<dim>);
+    grid.transform(&mpm_tests::distort<dim>);
   const auto &tria = grid.get_triangulation();
 
   GridNodes<dim> nodes(grid);

@@ -35,19 +35,6 @@ using namespace mpm;
 
 namespace
 {
-  template <int dim>
-  Point<dim>
-  distort(const Point<dim> &p)
-  {
-    Point<dim> q = p;
-    for (unsigned int d = 0; d < dim; ++d)
-      q[d] += 0.06 * std::sin(numbers::PI * p[(d + 1) % dim]) *
-              std::sin(2 * numbers::PI * p[d]);
-    return q;
-  }
-
-
-
   /**
    * Move every point of `points` by up to `reach` of the smallest cell per
    * direction (an explicit step moves a point less than that, and deal.II's
@@ -64,7 +51,7 @@ namespace
       {
         std::mt19937 rng(1000 * round + particle.get_id());
         std::uniform_real_distribution<double> step(-reach * h, reach * h);
-        Point<dim> x = particle.get_location();
+        Point<dim>                             x = particle.get_location();
         for (unsigned int d = 0; d < dim; ++d)
           x[d] = std::min(0.999, std::max(0.001, x[d] + step(rng)));
         particle.set_location(x);
@@ -81,8 +68,7 @@ namespace
     bool same = a.handler().n_locally_owned_particles() ==
                 b.handler().n_locally_owned_particles();
     auto q = b.handler().begin();
-    for (auto p = a.handler().begin(); same && p != a.handler().end();
-         ++p, ++q)
+    for (auto p = a.handler().begin(); same && p != a.handler().end(); ++p, ++q)
       {
         same = p->get_id() == q->get_id() &&
                p->get_surrounding_cell() == q->get_surrounding_cell() &&
@@ -104,9 +90,9 @@ void
 test(const std::string &kind)
 {
   deallog << "dim = " << dim << ", " << kind << std::endl;
-  const MPI_Comm     comm     = MPI_COMM_WORLD;
-  const bool         one_rank = Utilities::MPI::n_mpi_processes(comm) == 1;
-  ParameterHandler   prm;
+  const MPI_Comm   comm     = MPI_COMM_WORLD;
+  const bool       one_rank = Utilities::MPI::n_mpi_processes(comm) == 1;
+  ParameterHandler prm;
   mpm_tests::parse_small_scene<dim>(
     prm,
     std::string("subsection Grid\n set Generator = subdivided_hyper_cube\n"
@@ -119,9 +105,10 @@ test(const std::string &kind)
   Grid<dim> grid(prm, comm);
   grid.create();
   if (kind == "distorted")
-    grid.transform(&distort<dim>);
+    grid.transform(&mpm_tests::distort<dim>);
   if (kind == "refined left half")
-    grid.adapt([](const auto &cell) { return cell->center()[0] < 0.5 ? 1 : 0; });
+    grid.adapt(
+      [](const auto &cell) { return cell->center()[0] < 0.5 ? 1 : 0; });
 
   std::vector<std::unique_ptr<Material>> materials;
   MaterialPoints<dim>                    sorted(grid, {}, false, false);
@@ -132,28 +119,24 @@ test(const std::string &kind)
 
   bool         always_identical = true;
   unsigned int round            = 0;
-  for (; round < 4; ++round)
-    {
-      move(sorted, 0.05, round);
-      move(by_dealii, 0.05, round);
-      sorted.sort();
-      by_dealii.handler().sort_particles_into_subdomains_and_cells();
-      always_identical = always_identical && identical(sorted, by_dealii);
-    }
+  const auto move_and_sort = [&](const double reach, const unsigned int until) {
+    for (; round < until; ++round)
+      {
+        move(sorted, reach, round);
+        move(by_dealii, reach, round);
+        sorted.sort();
+        by_dealii.handler().sort_particles_into_subdomains_and_cells();
+        always_identical = always_identical && identical(sorted, by_dealii);
+      }
+  };
+  move_and_sort(0.05, 4);
   if (one_rank)
     mpm_tests::check("small moves: the pool is left alone",
                      sorted.n_pool_layouts() == layouts_at_start);
   // Moves of up to 0.2 of a cell take some 10-20 % of the points into
   // other cells, some across two or three faces: sort() moves them itself
   // until a quarter of the points have moved since the last layout.
-  for (; round < 10; ++round)
-    {
-      move(sorted, 0.2, round);
-      move(by_dealii, 0.2, round);
-      sorted.sort();
-      by_dealii.handler().sort_particles_into_subdomains_and_cells();
-      always_identical = always_identical && identical(sorted, by_dealii);
-    }
+  move_and_sort(0.2, 10);
   const unsigned int layouts = sorted.n_pool_layouts() - layouts_at_start;
   if (one_rank)
     mpm_tests::check("larger moves: sort() moves the points itself in some "

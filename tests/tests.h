@@ -6,6 +6,7 @@
 #include <deal.II/base/logstream.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/numbers.h>
+#include <deal.II/base/point.h>
 #include <deal.II/base/symmetric_tensor.h>
 
 #include <mpm/core/application.h>
@@ -25,6 +26,21 @@
 namespace mpm_tests
 {
   inline std::ofstream logfile;
+
+  /**
+   * A map smooth and one-to-one on [0,1]^dim that leaves the boundary in
+   * place: a grid of boxes becomes general quadrilaterals (hexahedra).
+   */
+  template <int dim>
+  dealii::Point<dim>
+  distort(const dealii::Point<dim> &p)
+  {
+    dealii::Point<dim> q = p;
+    for (unsigned int d = 0; d < dim; ++d)
+      q[d] += 0.06 * std::sin(dealii::numbers::PI * p[(d + 1) % dim]) *
+              std::sin(2 * dealii::numbers::PI * p[d]);
+    return q;
+  }
 
   /** The von Mises equivalent stress q = sqrt(3/2 s : s). */
   inline double
