@@ -273,6 +273,23 @@ namespace mpm
 
 
 
+  namespace
+  {
+    /**
+     * Whether a reference location lies in the unit cell (deal.II's
+     * mappings give infinity where they find none).
+     */
+    template <int dim>
+    bool
+    in_unit_cell(const Point<dim> &reference)
+    {
+      return reference[0] != std::numeric_limits<double>::infinity() &&
+             GeometryInfo<dim>::is_inside_unit_cell(reference);
+    }
+  } // namespace
+
+
+
   template <int dim>
   bool
   MaterialPoints<dim>::sort_within_rank()
@@ -292,8 +309,7 @@ namespace mpm
     std::vector<Point<dim>>        x, X;
     const auto classify = [&](particle_iterator &point,
                               const Point<dim> & reference) {
-      if (reference[0] == std::numeric_limits<double>::infinity() ||
-          !GeometryInfo<dim>::is_inside_unit_cell(reference))
+      if (!in_unit_cell(reference))
         {
           leavers.push_back(point);
           leaver_references.push_back(reference);
@@ -428,8 +444,7 @@ namespace mpm
         cell = next;
         mapping.transform_points_real_to_unit_cell(cell, x_view, X_view);
         reference = X_in[0];
-        if (reference[0] != std::numeric_limits<double>::infinity() &&
-            GeometryInfo<dim>::is_inside_unit_cell(reference))
+        if (in_unit_cell(reference))
           return {cell, reference};
       }
     return {nowhere, reference};
