@@ -63,8 +63,7 @@ namespace mpm
         if (!bodies[b].is_inflow())
           continue;
         bool                unused = false;
-        const std::uint64_t n =
-          collect_candidates(bodies, {b}, nullptr, unused).size();
+        const std::uint64_t n = count_candidates(bodies, {b}, nullptr, unused);
         if (Utilities::MPI::sum(n, grid.get_communicator()) == 0)
           throw InputError("Bodies/" + bodies[b].name() +
                            ": the region of this inflow holds no point "
@@ -88,10 +87,9 @@ namespace mpm
     auto &handler = points.handler();
     // Bodies seeded together at the start may share cells; a later release
     // goes into empty ones.
-    bool                         occupied = false;
-    const std::vector<Candidate> candidates =
-      collect_candidates(bodies, which, time > 0. ? &handler : nullptr,
-                         occupied);
+    bool                occupied = false;
+    const std::uint64_t n_local  = count_candidates(
+      bodies, which, time > 0. ? &handler : nullptr, occupied);
 
     const MPI_Comm comm = grid.get_communicator();
     if (Utilities::MPI::logical_or(occupied, comm))
@@ -104,69 +102,86 @@ namespace mpm
                    "region away from where the material gathers.";
         throw InputError(message.str());
       }
-    const std::uint64_t n_local  = candidates.size();
-    std::uint64_t       first_id = 0;
+    std::uint64_t first_id = 0;
     MPI_Exscan(&n_local, &first_id, 1, MPI_UINT64_T, MPI_SUM, comm);
     if (Utilities::MPI::this_mpi_process(comm) == 0)
       first_id = 0; // MPI_Exscan leaves rank 0's result undefined
     first_id += next_id;
     next_id += Utilities::MPI::sum(n_local, comm);
 
+    points.make_room(n_local);
     std::vector<double> properties(handler.n_properties_per_particle(), 0.);
-    for (unsigned int i = 0; i < candidates.size(); ++i)
-      {
-        const Candidate &c        = candidates[i];
-        const Material & material = *materials[bodies[c.body].material_index()];
-        std::fill(properties.begin(), properties.end(), 0.);
-        const double density = bodies[c.body].density() > 0. ?
-                                 bodies[c.body].density() :
-                                 material.density();
-        // An axisymmetric point is the ring its area sweeps: 2 pi x times
-        // the area (Pappus), exact for a box centred at the point.
-        const double volume = c.volume * grid.out_of_plane_measure(c.x);
-        properties[Layout::mass]             = density * volume;
-        properties[Layout::reference_volume] = volume;
-        for (unsigned int d = 0; d < dim; ++d)
-          properties[Layout::reference_size + d] = c.size[d];
-        const Tensor<1, dim> v = bodies[c.body].initial_velocity(c.x);
-        for (unsigned int d = 0; d < dim; ++d)
-          {
-            properties[Layout::velocity + d] = v[d];
-            properties[Layout::deformation_gradient + d * dim + d] = 1.;
-          }
-        if (dim == 2)
-          properties[Layout::out_of_plane_stretch] = 1.;
-        properties[Layout::body_id]     = c.body;
-        properties[Layout::material_id] = bodies[c.body].material_index();
-        const ArrayView<double> p(properties.data(), properties.size());
-        Layout::set_stress(
-          p,
-          material.seeded_state(
-            density,
-            ArrayView<double>(&p[Layout::internal_variables],
-                              material.n_internal_variables())));
-        handler.insert_particle(
-          c.x,
-          c.reference,
-          first_id + i,
-          c.cell,
-          ArrayView<const double>(properties.data(), properties.size()));
-      }
+    types::particle_index id = first_id;
+    const auto insert = [&](const Candidate &c) {
+      const Material & material = *materials[bodies[c.body].material_index()];
+      std::fill(properties.begin(), properties.end(), 0.);
+      const double density = bodies[c.body].density() > 0. ?
+                               bodies[c.body].density() :
+                               material.density();
+      // An axisymmetric point is the ring its area sweeps: 2 pi x times
+      // the area (Pappus), exact for a box centred at the point.
+      const double volume = c.volume * grid.out_of_plane_measure(c.x);
+      properties[Layout::mass]             = density * volume;
+      properties[Layout::reference_volume] = volume;
+      for (unsigned int d = 0; d < dim; ++d)
+        properties[Layout::reference_size + d] = c.size[d];
+      const Tensor<1, dim> v = bodies[c.body].initial_velocity(c.x);
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          properties[Layout::velocity + d] = v[d];
+          properties[Layout::deformation_gradient + d * dim + d] = 1.;
+        }
+      if (dim == 2)
+        properties[Layout::out_of_plane_stretch] = 1.;
+      properties[Layout::body_id]     = c.body;
+      properties[Layout::material_id] = bodies[c.body].material_index();
+      const ArrayView<double> p(properties.data(), properties.size());
+      Layout::set_stress(
+        p,
+        material.seeded_state(
+          density,
+          ArrayView<double>(&p[Layout::internal_variables],
+                            material.n_internal_variables())));
+      handler.insert_particle(
+        c.x,
+        c.reference,
+        id++,
+        c.cell,
+        ArrayView<const double>(properties.data(), properties.size()));
+    };
+    bool unused = false;
+    for_each_candidate(bodies, which, nullptr, unused, insert);
     handler.update_cached_numbers();
   }
 
 
 
   template <int dim>
-  std::vector<typename PointSeeder<dim>::Candidate>
-  PointSeeder<dim>::collect_candidates(
+  std::uint64_t
+  PointSeeder<dim>::count_candidates(
+    const std::vector<Body<dim>> &          bodies,
+    const std::vector<unsigned int> &       which,
+    const Particles::ParticleHandler<dim> * present,
+    bool &                                  occupied) const
+  {
+    std::uint64_t n = 0;
+    for_each_candidate(bodies, which, present, occupied,
+                       [&n](const Candidate &) { ++n; });
+    return n;
+  }
+
+
+
+  template <int dim>
+  void
+  PointSeeder<dim>::for_each_candidate(
     const std::vector<Body<dim>> &                bodies,
     const std::vector<unsigned int> &             which,
     const Particles::ParticleHandler<dim> *       present,
-    bool &                                        occupied) const
+    bool &                                        occupied,
+    const std::function<void(const Candidate &)> &visit) const
   {
-    const Mapping<dim> &   mapping = grid.get_mapping();
-    std::vector<Candidate> candidates;
+    const Mapping<dim> &mapping = grid.get_mapping();
     for (const auto &cell : grid.get_triangulation().active_cell_iterators())
       {
         if (!cell->is_locally_owned())
@@ -204,11 +219,10 @@ namespace mpm
                     box *= size[d];
                   }
                 size *= std::pow(volume / box, 1. / dim);
-                candidates.push_back({x, reference, cell, volume, size, b});
+                visit({x, reference, cell, volume, size, b});
               }
           }
       }
-    return candidates;
   }
 
 

@@ -273,6 +273,16 @@ namespace mpm
 
 
 
+  template <int dim>
+  void
+  MaterialPoints<dim>::make_room(const types::particle_index n_points)
+  {
+    if (particle_handler.n_locally_owned_particles() == 0)
+      particle_handler.reserve(n_points + n_points / 2);
+  }
+
+
+
   namespace
   {
     /**

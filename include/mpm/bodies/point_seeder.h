@@ -12,6 +12,8 @@
 #include <mpm/materials/material.h>
 #include <mpm/points/material_points.h>
 
+#include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -100,15 +102,25 @@ namespace mpm
     };
 
     /**
-     * The points of the bodies `which` in the locally owned cells; with
-     * `present`, `occupied` is set if one of their cells holds a point of
-     * it.
+     * Visit the points of the bodies `which` in the locally owned cells,
+     * in the order of the cells; with `present`, `occupied` is set if one
+     * of their cells holds a point of it. They are visited, not collected:
+     * a list of them would hold as much memory as the points themselves.
      */
-    std::vector<Candidate>
-    collect_candidates(const std::vector<Body<dim>> &          bodies,
-                       const std::vector<unsigned int> &       which,
-                       const Particles::ParticleHandler<dim> * present,
-                       bool &                                  occupied) const;
+    void
+    for_each_candidate(
+      const std::vector<Body<dim>> &                bodies,
+      const std::vector<unsigned int> &             which,
+      const Particles::ParticleHandler<dim> *       present,
+      bool &                                        occupied,
+      const std::function<void(const Candidate &)> &visit) const;
+
+    /** How many points for_each_candidate() visits. */
+    std::uint64_t
+    count_candidates(const std::vector<Body<dim>> &          bodies,
+                     const std::vector<unsigned int> &       which,
+                     const Particles::ParticleHandler<dim> * present,
+                     bool &                                  occupied) const;
 
     /** Seed the bodies `which` (indices into `bodies`) at `time`. */
     void

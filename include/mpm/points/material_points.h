@@ -86,6 +86,17 @@ namespace mpm
     sort();
 
     /**
+     * Make room in an empty pool for `n_points` points, and for the copies
+     * sort() inserts before it next lays the pool out (twice the movers of
+     * a step, at most a quarter of the points in all): seeded one by one,
+     * the pool would grow by doubling, and hold up to three times its size
+     * for a moment. Room never written takes no memory. A pool that holds
+     * points already is left to grow by doubling, which copies it rarely.
+     */
+    void
+    make_room(const types::particle_index n_points);
+
+    /**
      * How often sort() has left the work to deal.II's sort, which also
      * lays the property pool out again in cell order (sort_within_rank()).
      */
