@@ -51,6 +51,26 @@ namespace mpm
     SymmetricTensor<2, 3>
     push_forward(const Tensor<2, 3> &f, const SymmetricTensor<2, 3> &b)
     {
+      // In 2D scenes z is an axis of both (f = I + dt L, L in plane but
+      // for L_zz): the in-plane block and zz alone, each entry summed as
+      // below but for the zero terms.
+      const double b_xx = b.access_raw_entry(0), b_yy = b.access_raw_entry(1),
+                   b_xy = b.access_raw_entry(3);
+      if (f[0][2] == 0. && f[1][2] == 0. && f[2][0] == 0. && f[2][1] == 0. &&
+          b.access_raw_entry(4) == 0. && b.access_raw_entry(5) == 0.)
+        {
+          const double fb00 = f[0][0] * b_xx + f[0][1] * b_xy;
+          const double fb01 = f[0][0] * b_xy + f[0][1] * b_yy;
+          const double fb10 = f[1][0] * b_xx + f[1][1] * b_xy;
+          const double fb11 = f[1][0] * b_xy + f[1][1] * b_yy;
+          SymmetricTensor<2, 3> result;
+          result.access_raw_entry(0) = fb00 * f[0][0] + fb01 * f[0][1];
+          result.access_raw_entry(1) = fb10 * f[1][0] + fb11 * f[1][1];
+          result.access_raw_entry(2) =
+            f[2][2] * b.access_raw_entry(2) * f[2][2];
+          result.access_raw_entry(3) = fb00 * f[1][0] + fb01 * f[1][1];
+          return result;
+        }
       const Tensor<2, 3> full(b);
       Tensor<2, 3>       fb;
       for (unsigned int i = 0; i < 3; ++i)
@@ -69,12 +89,33 @@ namespace mpm
 
 
 
-    /** sum_a v_a n_a (x) n_a, entry by entry (no outer products). */
+    /**
+     * sum_a v_a n_a (x) n_a, entry by entry (no outer products). In 2D
+     * scenes one axis is z exactly (principal_axes): the in-plane block
+     * from the other two, zz from it, each entry summed as below but for
+     * the zero terms.
+     */
     SymmetricTensor<2, 3>
     from_principal(const Tensor<1, 3> &                v,
                    const std::array<Tensor<1, 3>, 3> &n)
     {
       SymmetricTensor<2, 3> t;
+      for (unsigned int z = 0; z < 3; ++z)
+        if (n[z][0] == 0. && n[z][1] == 0. && n[z][2] == 1.)
+          {
+            const unsigned int p = (z == 0 ? 1 : 0), q = (z == 2 ? 1 : 2);
+            if (n[p][2] != 0. || n[q][2] != 0.)
+              break;
+            const Tensor<1, 3> &np = n[p], &nq = n[q];
+            t.access_raw_entry(0) =
+              v[p] * (np[0] * np[0]) + v[q] * (nq[0] * nq[0]);
+            t.access_raw_entry(1) =
+              v[p] * (np[1] * np[1]) + v[q] * (nq[1] * nq[1]);
+            t.access_raw_entry(2) = v[z];
+            t.access_raw_entry(3) =
+              v[p] * (np[0] * np[1]) + v[q] * (nq[0] * nq[1]);
+            return t;
+          }
       for (unsigned int k = 0; k < 6; ++k)
         {
           const unsigned int i = row[k], j = column[k];
