@@ -11,7 +11,6 @@ namespace mpm
   GridNodes<dim>::GridNodes(const Grid<dim> &grid)
     : grid(grid)
     , system_element(FE_Q<dim>(1), NodalLayout::n_components)
-    , system_dof_handler(grid.get_triangulation())
   {
     grid_changed = grid.changed.connect([this]() { setup(); });
   }
@@ -22,36 +21,25 @@ namespace mpm
   void
   GridNodes<dim>::setup()
   {
-    system_dof_handler.distribute_dofs(system_element);
-    IndexSet relevant;
-    DoFTools::extract_locally_relevant_dofs(system_dof_handler, relevant);
-    values.reinit(system_dof_handler.locally_owned_dofs(),
-                  relevant,
-                  grid.get_communicator());
-
-    // Value c of node i sits at n_components i + c: the system numbering
-    // must be the grid's node numbering, component by component.
-    for (const auto &cell : grid.node_numbering().active_cell_iterators())
-      if (!cell->is_artificial())
-        {
-          const typename DoFHandler<dim>::active_cell_iterator system_cell(
-            &grid.get_triangulation(),
-            cell->level(),
-            cell->index(),
-            &system_dof_handler);
-          for (const unsigned int v : cell->vertex_indices())
-            for (unsigned int c = 0; c < NodalLayout::n_components; ++c)
-              AssertThrow(
-                system_cell->vertex_dof_index(v, c) ==
-                    NodalLayout::n_components * cell->vertex_dof_index(v, 0) +
-                      c &&
-                  values.get_partitioner()->global_to_local(
-                    system_cell->vertex_dof_index(v, c)) ==
-                    NodalLayout::n_components *
-                        grid.node_of_dof(cell->vertex_dof_index(v, 0)) +
-                      c,
-                ExcInternalError());
-        }
+    // Value c of node i sits at n_components i + c: the grid's node
+    // partition with each index widened to its components keeps the nodes'
+    // order, owned and ghost. A DoFHandler of the FESystem would number
+    // them so too, and cost as much memory as the points' positions.
+    constexpr unsigned int n = NodalLayout::n_components;
+    const Utilities::MPI::Partitioner &nodes = *grid.node_partitioner();
+    IndexSet owned(n * nodes.size()), ghosts(n * nodes.size());
+    for (auto range = nodes.locally_owned_range().begin_intervals();
+         range != nodes.locally_owned_range().end_intervals();
+         ++range)
+      owned.add_range(n * *range->begin(), n * (range->last() + 1));
+    std::vector<types::global_dof_index> ghost_values;
+    ghost_values.reserve(n * nodes.n_ghost_indices());
+    for (const auto g : nodes.ghost_indices())
+      for (unsigned int c = 0; c < n; ++c)
+        ghost_values.push_back(n * g + c);
+    ghosts.add_indices(ghost_values.begin(), ghost_values.end());
+    values.reinit(owned, ghosts, grid.get_communicator());
+    system_dof_handler.reset();
 
     active_flag.assign(grid.n_nodes(), false);
     active_nodes.clear();
@@ -117,6 +105,36 @@ namespace mpm
     for (const unsigned int node : imported_nodes)
       if (!active_flag[node] && values_of(node)[NodalLayout::mass] > 0.)
         solve_nodes.push_back(node);
+  }
+
+
+
+  template <int dim>
+  const DoFHandler<dim> &
+  GridNodes<dim>::output_dof_handler() const
+  {
+    if (system_dof_handler)
+      return *system_dof_handler;
+    system_dof_handler =
+      std::make_unique<DoFHandler<dim>>(grid.get_triangulation());
+    system_dof_handler->distribute_dofs(system_element);
+    for (const auto &cell : grid.node_numbering().active_cell_iterators())
+      if (!cell->is_artificial())
+        {
+          const typename DoFHandler<dim>::active_cell_iterator system_cell(
+            &grid.get_triangulation(),
+            cell->level(),
+            cell->index(),
+            system_dof_handler.get());
+          for (const unsigned int v : cell->vertex_indices())
+            for (unsigned int c = 0; c < NodalLayout::n_components; ++c)
+              AssertThrow(system_cell->vertex_dof_index(v, c) ==
+                            NodalLayout::n_components *
+                                cell->vertex_dof_index(v, 0) +
+                              c,
+                          ExcInternalError());
+        }
+    return *system_dof_handler;
   }
 
 

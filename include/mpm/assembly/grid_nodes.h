@@ -102,22 +102,23 @@ namespace mpm
     const LinearAlgebra::distributed::Vector<double> &
     output_vector() const;
 
+    /**
+     * The FESystem numbering of the nodes, distributed on the first call
+     * after each setup(): only the grid output needs it.
+     */
     const DoFHandler<dim> &
-    output_dof_handler() const
-    {
-      return system_dof_handler;
-    }
+    output_dof_handler() const;
 
   private:
     const Grid<dim> &grid;
     FESystem<dim>    system_element;
     /**
-     * The FESystem numbering of the same nodes, whose dof (node, c) is
-     * n_components * node + c (checked in setup()): deal.II numbers a
-     * vertex's components together, vertices in the same order as the
-     * scalar numbering.
+     * output_dof_handler(): its dof (node, c) is the value c of the node's
+     * global index g in the grid's node numbering, n_components g + c
+     * (checked when it is built): deal.II numbers a vertex's components
+     * together, vertices in the order of the scalar numbering.
      */
-    DoFHandler<dim>                                    system_dof_handler;
+    mutable std::unique_ptr<DoFHandler<dim>>           system_dof_handler;
     mutable LinearAlgebra::distributed::Vector<double> values;
 
     /** Per node: written by the current projection. */
