@@ -1,4 +1,3 @@
-#include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_q.h>
 
 #include <mpm/assembly/grid_nodes.h>

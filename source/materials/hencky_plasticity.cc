@@ -54,11 +54,12 @@ namespace mpm
       // In 2D scenes z is an axis of both (f = I + dt L, L in plane but
       // for L_zz): the in-plane block and zz alone, each entry summed as
       // below but for the zero terms.
-      const double b_xx = b.access_raw_entry(0), b_yy = b.access_raw_entry(1),
-                   b_xy = b.access_raw_entry(3);
       if (f[0][2] == 0. && f[1][2] == 0. && f[2][0] == 0. && f[2][1] == 0. &&
           b.access_raw_entry(4) == 0. && b.access_raw_entry(5) == 0.)
         {
+          const double b_xx = b.access_raw_entry(0),
+                       b_yy = b.access_raw_entry(1),
+                       b_xy = b.access_raw_entry(3);
           const double fb00 = f[0][0] * b_xx + f[0][1] * b_xy;
           const double fb01 = f[0][0] * b_xy + f[0][1] * b_yy;
           const double fb10 = f[1][0] * b_xx + f[1][1] * b_xy;

@@ -278,7 +278,7 @@ namespace mpm
   MaterialPoints<dim>::make_room(const types::particle_index n_points)
   {
     if (particle_handler.n_locally_owned_particles() == 0)
-      particle_handler.reserve(n_points + n_points / 2);
+      particle_handler.reserve(n_points + 2 * moves_before_layout(n_points));
   }
 
 
@@ -370,7 +370,8 @@ namespace mpm
       }
     moved_since_layout += leavers.size();
     const bool lay_out_again =
-      moved_since_layout > particle_handler.n_locally_owned_particles() / 4;
+      moved_since_layout >
+      moves_before_layout(particle_handler.n_locally_owned_particles());
     if (Utilities::MPI::logical_or(!all_found || lay_out_again,
                                    get_communicator()))
       return false;

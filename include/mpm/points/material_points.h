@@ -88,7 +88,7 @@ namespace mpm
     /**
      * Make room in an empty pool for `n_points` points, and for the copies
      * sort() inserts before it next lays the pool out (twice the movers of
-     * a step, at most a quarter of the points in all): seeded one by one,
+     * a step, at most moves_before_layout() in all): seeded one by one,
      * the pool would grow by doubling, and hold up to three times its size
      * for a moment. Room never written takes no memory. A pool that holds
      * points already is left to grow by doubling, which copies it rarely.
@@ -224,8 +224,8 @@ namespace mpm
      * deal.II's sort copies every point's properties into cell order at
      * every call; this one moves only the points that changed cells, in the
      * order deal.II would (so every sum over points is the same), and
-     * leaves the copy to deal.II's sort once a quarter of the points have
-     * moved since.
+     * leaves the copy to deal.II's sort once moves_before_layout() of the
+     * points have moved since.
      */
     bool
     sort_within_rank();
@@ -265,6 +265,18 @@ namespace mpm
     /** What left through the outflow boundaries from this rank. */
     double                          local_removed_mass   = 0.;
     types::particle_index           local_removed_points = 0;
+
+    /**
+     * How many of n points may move between cells before sort() leaves
+     * the work to deal.II's sort, which lays the pool out again in cell
+     * order (so that the points of one cell stay near each other in
+     * memory); make_room() sizes the pool by it too.
+     */
+    static types::particle_index
+    moves_before_layout(const types::particle_index n)
+    {
+      return n / 4;
+    }
 
     /** Points moved between cells since deal.II last sorted the pool. */
     types::particle_index moved_since_layout = 0;
