@@ -81,6 +81,27 @@ namespace
       }
     return Utilities::MPI::min(same ? 1 : 0, MPI_COMM_WORLD) == 1;
   }
+
+
+  /**
+   * Whether the property pool holds the points of this rank one after the
+   * other in the handler's order (as a layout leaves it).
+   */
+  template <int dim>
+  bool
+  in_pool_order(const MaterialPoints<dim> &points)
+  {
+    const auto & handler = points.handler();
+    const double *next    = nullptr;
+    bool          ordered = true;
+    for (const auto &point : handler)
+      {
+        const double *here = point.get_properties().data();
+        ordered = ordered && (next == nullptr || here == next);
+        next    = here + handler.n_properties_per_particle();
+      }
+    return Utilities::MPI::min(ordered ? 1 : 0, MPI_COMM_WORLD) == 1;
+  }
 } // namespace
 
 
@@ -118,15 +139,19 @@ test(const std::string &kind)
   const unsigned int layouts_at_start = sorted.n_pool_layouts();
 
   bool         always_identical = true;
+  bool         laid_out_in_order = true;
   unsigned int round            = 0;
   const auto move_and_sort = [&](const double reach, const unsigned int until) {
     for (; round < until; ++round)
       {
         move(sorted, reach, round);
         move(by_dealii, reach, round);
+        const unsigned int layouts_before = sorted.n_pool_layouts();
         sorted.sort();
         by_dealii.handler().sort_particles_into_subdomains_and_cells();
         always_identical = always_identical && identical(sorted, by_dealii);
+        if (sorted.n_pool_layouts() > layouts_before)
+          laid_out_in_order = laid_out_in_order && in_pool_order(sorted);
       }
   };
   move_and_sort(0.05, 4);
@@ -144,6 +169,8 @@ test(const std::string &kind)
                      layouts > 0 && layouts < 6);
   mpm_tests::check("every round equals deal.II's sort, bit for bit",
                    always_identical);
+  mpm_tests::check("after each layout the pool holds the points in order",
+                   laid_out_in_order);
   deallog << "points: " << sorted.n_global_points() << std::endl;
 }
 

@@ -292,8 +292,7 @@ namespace mpm
         CellGeometry &data = cells[cell->active_cell_index()];
         for (unsigned int v = 0; v < n_vertices; ++v)
           {
-            data.nodes[v]    = node_of_dof(cell->vertex_dof_index(v, 0));
-            data.vertices[v] = cell->vertex(v);
+            data.nodes[v] = node_of_dof(cell->vertex_dof_index(v, 0));
             node_positions[data.nodes[v]] = cell->vertex(v);
           }
         // The masters of a hanging vertex are vertices of the coarser

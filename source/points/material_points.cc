@@ -8,10 +8,12 @@
 #include <boost/serialization/vector.hpp>
 
 #include <mpm/base/input_error.h>
+#include <mpm/base/release_freed_memory.h>
 #include <mpm/base/shared_position.h>
 #include <mpm/points/material_points.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -238,6 +240,7 @@ namespace mpm
     if (!sort_within_rank())
       {
         particle_handler.sort_particles_into_subdomains_and_cells();
+        release_freed_memory();
         moved_since_layout = 0;
         ++pool_layouts;
       }
@@ -335,15 +338,17 @@ namespace mpm
         const unsigned int n    = particle_handler.n_particles_in_cell(cell);
         if (boxes)
           {
-            const auto &vertices =
-              grid.cell_geometry(cell->active_cell_index()).vertices;
+            const auto &nodes =
+              grid.cell_geometry(cell->active_cell_index()).nodes;
+            const Point<dim> &origin = grid.node_position(nodes[0]);
+            Tensor<1, dim>    h;
+            for (unsigned int d = 0; d < dim; ++d)
+              h[d] = grid.node_position(nodes[1u << d])[d] - origin[d];
             for (unsigned int k = 0; k < n; ++k)
               {
                 Point<dim> reference = point->get_location();
                 for (unsigned int d = 0; d < dim; ++d)
-                  reference[d] -= vertices[0][d];
-                for (unsigned int d = 0; d < dim; ++d)
-                  reference[d] /= vertices[1u << d][d] - vertices[0][d];
+                  reference[d] = (reference[d] - origin[d]) / h[d];
                 classify(point, reference);
               }
             continue;
@@ -372,8 +377,14 @@ namespace mpm
     const bool lay_out_again =
       moved_since_layout >
       moves_before_layout(particle_handler.n_locally_owned_particles());
-    if (Utilities::MPI::logical_or(!all_found || lay_out_again,
-                                   get_communicator()))
+    // One reduction for both collective decisions.
+    const std::array<unsigned int, 2> local{{all_found ? 0u : 1u,
+                                             lay_out_again ? 1u : 0u}};
+    std::array<unsigned int, 2>       any;
+    Utilities::MPI::max(ArrayView<const unsigned int>(local.data(), 2),
+                        get_communicator(),
+                        ArrayView<unsigned int>(any.data(), 2));
+    if (any[0] != 0)
       return false;
     // Insert each point into its new cell, then remove it from its old one,
     // as deal.II does: the order of the points in every cell, and so of
@@ -397,7 +408,72 @@ namespace mpm
       }
     // Also with no leavers here: it counts the points, with every rank.
     particle_handler.remove_particles(leavers);
+    if (any[1] != 0)
+      {
+        if (lay_out_again)
+          lay_out_pool();
+        particle_handler.update_cached_numbers();
+      }
     return true;
+  }
+
+
+
+  template <int dim>
+  void
+  MaterialPoints<dim>::lay_out_pool()
+  {
+    // Copy the points out in the handler's order and insert them back into
+    // an empty pool, which then holds them in that order, as deal.II's sort
+    // leaves it. That sort would also build the search structures of its
+    // grid cache (a set of cells for every vertex), kept for the life of
+    // the grid.
+    {
+      const unsigned int n_properties =
+        particle_handler.n_properties_per_particle();
+      const types::particle_index n =
+        particle_handler.n_locally_owned_particles();
+      std::vector<Point<dim>>            x, X;
+      std::vector<types::particle_index> ids;
+      std::vector<double>                properties;
+      x.reserve(n);
+      X.reserve(n);
+      ids.reserve(n);
+      properties.reserve(n * n_properties);
+      std::vector<std::pair<typename Triangulation<dim>::active_cell_iterator,
+                            types::particle_index>>
+        cells;
+      for (const auto &point : particle_handler)
+        {
+          const auto cell = point.get_surrounding_cell();
+          if (cells.empty() || cells.back().first != cell)
+            cells.emplace_back(cell, 0);
+          ++cells.back().second;
+          x.push_back(point.get_location());
+          X.push_back(point.get_reference_location());
+          ids.push_back(point.get_id());
+          const ArrayView<const double> p = point.get_properties();
+          properties.insert(properties.end(), p.begin(), p.end());
+        }
+      particle_handler.clear_particles();
+      // The old pool's memory, before the new pool takes its place.
+      release_freed_memory();
+      make_room(n);
+      types::particle_index k = 0;
+      for (const auto &[cell, n_in_cell] : cells)
+        for (types::particle_index i = 0; i < n_in_cell; ++i, ++k)
+          particle_handler.insert_particle(
+            x[k],
+            X[k],
+            ids[k],
+            cell,
+            ArrayView<const double>(properties.data() + k * n_properties,
+                                    n_properties));
+    }
+    // The copy's memory.
+    release_freed_memory();
+    moved_since_layout = 0;
+    ++pool_layouts;
   }
 
 

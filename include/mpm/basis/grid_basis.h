@@ -262,13 +262,13 @@ namespace mpm
         }
     }
 
-    static Tensor<2, dim>
+    Tensor<2, dim>
     jacobian(const CellGeometry &                          cell,
-             const std::array<Tensor<1, dim>, n_vertices> &grad_ref)
+             const std::array<Tensor<1, dim>, n_vertices> &grad_ref) const
     {
       Tensor<2, dim> J;
       for (unsigned int v = 0; v < n_vertices; ++v)
-        J += outer_product(cell.vertices[v], grad_ref[v]);
+        J += outer_product(grid.node_position(cell.nodes[v]), grad_ref[v]);
       return J;
     }
 

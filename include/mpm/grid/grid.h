@@ -286,11 +286,13 @@ namespace mpm
       return hanging_nodes;
     }
 
-    /** What the Q1 basis needs of a locally owned cell. */
+    /**
+     * What the Q1 basis needs of a locally owned cell. The vertices are
+     * those of its nodes, node_position(nodes[v]): they are not held twice.
+     */
     struct CellGeometry
     {
-      std::array<unsigned int, n_vertices>   nodes;
-      std::array<Tensor<1, dim>, n_vertices> vertices;
+      std::array<unsigned int, n_vertices> nodes;
       /** 1 / edge length per direction; set on axis-aligned boxes only. */
       Tensor<1, dim> inverse_h;
       bool           is_cartesian = false;

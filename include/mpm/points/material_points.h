@@ -97,8 +97,8 @@ namespace mpm
     make_room(const types::particle_index n_points);
 
     /**
-     * How often sort() has left the work to deal.II's sort, which also
-     * lays the property pool out again in cell order (sort_within_rank()).
+     * How often sort() has laid the property pool out again in cell order,
+     * itself (lay_out_pool()) or through deal.II's sort.
      */
     unsigned int
     n_pool_layouts() const
@@ -220,15 +220,23 @@ namespace mpm
      * The sort when every point that left its cell stays on this rank and
      * in a cell next to its old one (collective; returns false, having
      * changed nothing but reference locations, where some point on some
-     * rank does not, or where the pool is due to be laid out again).
-     * deal.II's sort copies every point's properties into cell order at
-     * every call; this one moves only the points that changed cells, in the
-     * order deal.II would (so every sum over points is the same), and
-     * leaves the copy to deal.II's sort once moves_before_layout() of the
-     * points have moved since.
+     * rank does not). deal.II's sort copies every point's properties into
+     * cell order at every call; this one moves only the points that changed
+     * cells, in the order deal.II would (so every sum over points is the
+     * same), and lays the pool out again (lay_out_pool()) once
+     * moves_before_layout() of the points have moved since.
      */
     bool
     sort_within_rank();
+
+    /**
+     * Lay the property pool out again in the handler's order, so that the
+     * points of one cell lie next to each other in memory; the order of the
+     * points is unchanged. Local: the caller updates the handler's cached
+     * numbers, with every rank.
+     */
+    void
+    lay_out_pool();
 
     /**
      * The active cell that holds x, walking from `cell` across the faces
@@ -267,10 +275,9 @@ namespace mpm
     types::particle_index           local_removed_points = 0;
 
     /**
-     * How many of n points may move between cells before sort() leaves
-     * the work to deal.II's sort, which lays the pool out again in cell
-     * order (so that the points of one cell stay near each other in
-     * memory); make_room() sizes the pool by it too.
+     * How many of n points may move between cells before sort() lays the
+     * pool out again in cell order (so that the points of one cell stay
+     * near each other in memory); make_room() sizes the pool by it too.
      */
     static types::particle_index
     moves_before_layout(const types::particle_index n)
@@ -278,7 +285,7 @@ namespace mpm
       return n / 4;
     }
 
-    /** Points moved between cells since deal.II last sorted the pool. */
+    /** Points moved between cells since the pool was last laid out. */
     types::particle_index moved_since_layout = 0;
     unsigned int          pool_layouts       = 0;
 
