@@ -621,6 +621,10 @@ namespace mpm
     getrusage(RUSAGE_SELF, &usage);
     const double peak_memory_mb =
       Utilities::MPI::sum(usage.ru_maxrss / 1024., communicator);
+    Utilities::System::MemoryStats memory;
+    Utilities::System::get_memory_stats(memory);
+    const double end_memory_mb =
+      Utilities::MPI::sum(memory.VmRSS / 1024., communicator);
     // A continued run reports the steps it took itself.
     const unsigned int steps_taken = step - start_step;
     pcout << "mpm: " << steps_taken << " steps, "
@@ -628,7 +632,8 @@ namespace mpm
                Utilities::MPI::n_mpi_processes(communicator)
           << " particle-steps per second per rank, " << wall
           << " s wall time, peak memory " << peak_memory_mb
-          << " MB (all ranks)" << std::endl;
+          << " MB (all ranks), " << end_memory_mb << " MB at the end"
+          << std::endl;
     if (adaptation->enabled())
       pcout << "mpm: the grid adapted " << adaptation->n_adaptations()
             << " times; " << grid->get_triangulation().n_global_active_cells()

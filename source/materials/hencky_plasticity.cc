@@ -205,10 +205,14 @@ namespace mpm
     SymmetricTensor<2, 3> b_new = step.b_trial;
     if (step.result.plastic)
       {
-        Tensor<1, 3> stretch =
-          principal_compliance * step.result.tau;
+        // Equal elastic strains (a return to an edge or to the apex, at
+        // zero strain on a cohesionless apex) share their exponential.
+        const Tensor<1, 3> strain = principal_compliance * step.result.tau;
+        Tensor<1, 3>       stretch;
         for (unsigned int a = 0; a < 3; ++a)
-          stretch[a] = std::exp(2. * stretch[a]);
+          stretch[a] = a > 0 && strain[a] == strain[a - 1] ?
+                         stretch[a - 1] :
+                         std::exp(2. * strain[a]);
         b_new = from_principal(stretch, step.directions);
       }
     b_new -= unit_symmetric_tensor<3>();

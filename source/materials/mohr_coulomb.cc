@@ -142,6 +142,8 @@ namespace mpm
             for (unsigned int l = j + 1; l < n_planes; ++l)
               active_sets.push_back({{{i, j, l}}, 3});
       }
+    for (const ActiveSet &set : active_sets)
+      peak_inverses.push_back(invert_set(peak_planes, set));
   }
 
 
@@ -242,6 +244,54 @@ namespace mpm
 
 
 
+  MohrCoulomb::SetInverse
+  MohrCoulomb::invert_set(const Planes &surfaces, const ActiveSet &set)
+  {
+    // Inverted in closed form for n = 1 and 2.
+    const std::array<unsigned int, 3> &active = set.planes;
+    const unsigned int                  n      = set.n;
+    double                              M[3][3];
+    double                              scale = 1.;
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        scale *= surfaces[active[i]].scale;
+        for (unsigned int j = 0; j < n; ++j)
+          M[i][j] = surfaces[active[i]].a * surfaces[active[j]].Db;
+      }
+    SetInverse result;
+    double     det;
+    if (n == 1)
+      {
+        det                    = M[0][0];
+        result.M_inverse[0][0] = 1. / det;
+      }
+    else if (n == 2)
+      {
+        det                    = M[0][0] * M[1][1] - M[0][1] * M[1][0];
+        result.M_inverse[0][0] = M[1][1] / det;
+        result.M_inverse[0][1] = -M[0][1] / det;
+        result.M_inverse[1][0] = -M[1][0] / det;
+        result.M_inverse[1][1] = M[0][0] / det;
+      }
+    else
+      {
+        Tensor<2, 3> full;
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int j = 0; j < 3; ++j)
+            full[i][j] = M[i][j];
+        det = determinant(full);
+        if (det != 0.)
+          full = invert(full);
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int j = 0; j < 3; ++j)
+            result.M_inverse[i][j] = full[i][j];
+      }
+    result.singular = std::abs(det) <= 1e-10 * scale;
+    return result;
+  }
+
+
+
   HenckyPlasticity::Return
   MohrCoulomb::return_to_yield_surface(const Tensor<1, 3> &trial_tau,
                                        const double        plastic_strain,
@@ -311,48 +361,17 @@ namespace mpm
     // the planes' own D b throughout, and no call per set: the explicit
     // scheme returns most points of a flowing granular body every step.
     bool done = false;
-    for (const ActiveSet &set : active_sets)
+    const double p_wave_modulus = lambda + 2. * mu;
+    const bool   peak           = &surfaces == &peak_planes;
+    for (unsigned int k = 0; k < active_sets.size(); ++k)
       {
-        const std::array<unsigned int, 3> &active = set.planes;
-        const unsigned int                  n      = set.n;
-        // M_ij = a_i . D b_j of the n planes, inverted in closed form for
-        // n = 1 and 2.
-        double M[3][3], M_inverse[3][3];
-        double scale = 1.;
-        for (unsigned int i = 0; i < n; ++i)
-          {
-            scale *= surfaces[active[i]].scale;
-            for (unsigned int j = 0; j < n; ++j)
-              M[i][j] = surfaces[active[i]].a * surfaces[active[j]].Db;
-          }
-        double det;
-        if (n == 1)
-          {
-            det             = M[0][0];
-            M_inverse[0][0] = 1. / det;
-          }
-        else if (n == 2)
-          {
-            det             = M[0][0] * M[1][1] - M[0][1] * M[1][0];
-            M_inverse[0][0] = M[1][1] / det;
-            M_inverse[0][1] = -M[0][1] / det;
-            M_inverse[1][0] = -M[1][0] / det;
-            M_inverse[1][1] = M[0][0] / det;
-          }
-        else
-          {
-            Tensor<2, 3> full;
-            for (unsigned int i = 0; i < 3; ++i)
-              for (unsigned int j = 0; j < 3; ++j)
-                full[i][j] = M[i][j];
-            det = determinant(full);
-            if (det != 0.)
-              full = invert(full);
-            for (unsigned int i = 0; i < 3; ++i)
-              for (unsigned int j = 0; j < 3; ++j)
-                M_inverse[i][j] = full[i][j];
-          }
-        if (std::abs(det) <= 1e-10 * scale)
+        const std::array<unsigned int, 3> &active = active_sets[k].planes;
+        const unsigned int                  n      = active_sets[k].n;
+        SetInverse                          softened_inverse;
+        const SetInverse &                  inverse =
+          peak ? peak_inverses[k] :
+                 (softened_inverse = invert_set(surfaces, active_sets[k]));
+        if (inverse.singular)
           continue;
         double       gamma[3];
         bool         flows = true;
@@ -361,8 +380,8 @@ namespace mpm
           {
             gamma[i] = 0.;
             for (unsigned int j = 0; j < n; ++j)
-              gamma[i] += M_inverse[i][j] * violation[active[j]];
-            flows = flows && !(gamma[i] * (lambda + 2. * mu) < -tolerance);
+              gamma[i] += inverse.M_inverse[i][j] * violation[active[j]];
+            flows = flows && !(gamma[i] * p_wave_modulus < -tolerance);
             s -= gamma[i] * surfaces[active[i]].Db;
           }
         if (!flows || !admissible(s))
@@ -376,7 +395,7 @@ namespace mpm
             tangent = principal_stiffness;
             for (unsigned int i = 0; i < n; ++i)
               for (unsigned int j = 0; j < n; ++j)
-                tangent -= M_inverse[i][j] *
+                tangent -= inverse.M_inverse[i][j] *
                            outer_product(surfaces[active[i]].Db,
                                          surfaces[active[j]].Da);
           }

@@ -280,7 +280,9 @@ namespace mpm
   void
   MaterialPoints<dim>::make_room(const types::particle_index n_points)
   {
-    if (particle_handler.n_locally_owned_particles() == 0)
+    // The pool itself: the handler's count of points is stale between
+    // clear_particles() and the next update of its cached numbers.
+    if (particle_handler.get_property_pool().n_registered_slots() == 0)
       particle_handler.reserve(n_points + 2 * moves_before_layout(n_points));
   }
 

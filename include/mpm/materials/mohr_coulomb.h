@@ -125,6 +125,25 @@ namespace mpm
      * return. Softening changes the planes, not their sets.
      */
     boost::container::static_vector<ActiveSet, 41> active_sets;
+
+    /**
+     * The inverse of M_ij = a_i . D b_j over the n planes of a set (the
+     * first n rows and columns), or `singular`.
+     */
+    struct SetInverse
+    {
+      double M_inverse[3][3];
+      bool   singular;
+    };
+
+    static SetInverse
+    invert_set(const Planes &surfaces, const ActiveSet &set);
+
+    /**
+     * invert_set() of every active set on the peak planes, worked out once:
+     * without softening a return reads them instead of inverting.
+     */
+    boost::container::static_vector<SetInverse, 41> peak_inverses;
   };
 } // namespace mpm
 
