@@ -390,12 +390,12 @@ namespace mpm
       return false;
     // Insert each point into its new cell, then remove it from its old one,
     // as deal.II does: the order of the points in every cell, and so of
-    // every sum over them, is deal.II's. The room for the copies is made
-    // first (at most twice the movers of a step), so that the pool grows
-    // by that, not by doubling.
-    particle_handler.reserve(
-      particle_handler.get_property_pool().n_registered_slots() +
-      2 * leavers.size());
+    // every sum over them, is deal.II's. The copies take the free slots
+    // first, then new ones: room for that many is made first, so that a
+    // pool short of it grows by that, not by doubling (and a pool with
+    // the room is not copied).
+    particle_handler.reserve(particle_handler.get_property_pool().n_slots() +
+                             leavers.size());
     std::vector<double> properties(
       particle_handler.n_properties_per_particle());
     for (unsigned int k = 0; k < leavers.size(); ++k)

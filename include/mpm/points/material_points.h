@@ -87,11 +87,12 @@ namespace mpm
 
     /**
      * Make room in an empty pool for `n_points` points, and for the copies
-     * sort() inserts before it next lays the pool out (twice the movers of
-     * a step, at most moves_before_layout() in all): seeded one by one,
-     * the pool would grow by doubling, and hold up to three times its size
-     * for a moment. Room never written takes no memory. A pool that holds
-     * points already is left to grow by doubling, which copies it rarely.
+     * sort() inserts before it removes the points that moved (twice
+     * moves_before_layout(), so that a step that moves that many more than
+     * it allows between layouts still finds room): seeded one by one, the
+     * pool would grow by doubling, and hold up to three times its size for
+     * a moment. Room never written takes no memory. A pool that holds
+     * points already is left to grow, which copies it rarely.
      */
     void
     make_room(const types::particle_index n_points);
