@@ -240,7 +240,6 @@ namespace mpm
     if (!sort_within_rank())
       {
         particle_handler.sort_particles_into_subdomains_and_cells();
-        release_freed_memory();
         moved_since_layout = 0;
         ++pool_layouts;
       }
@@ -391,11 +390,13 @@ namespace mpm
     // Insert each point into its new cell, then remove it from its old one,
     // as deal.II does: the order of the points in every cell, and so of
     // every sum over them, is deal.II's. The copies take the free slots
-    // first, then new ones: room for that many is made first, so that a
+    // first, then new ones: the room for them is made first, so that a
     // pool short of it grows by that, not by doubling (and a pool with
     // the room is not copied).
-    particle_handler.reserve(particle_handler.get_property_pool().n_slots() +
-                             leavers.size());
+    const auto &pool = particle_handler.get_property_pool();
+    particle_handler.reserve(
+      std::max<std::size_t>(pool.n_slots(),
+                            pool.n_registered_slots() + leavers.size()));
     std::vector<double> properties(
       particle_handler.n_properties_per_particle());
     for (unsigned int k = 0; k < leavers.size(); ++k)

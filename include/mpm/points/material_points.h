@@ -98,8 +98,9 @@ namespace mpm
     make_room(const types::particle_index n_points);
 
     /**
-     * How often sort() has laid the property pool out again in cell order,
-     * itself (lay_out_pool()) or through deal.II's sort.
+     * How often sort() has laid this rank's property pool out again in cell
+     * order, itself (lay_out_pool(), on the ranks where enough points
+     * moved) or through deal.II's sort (on every rank).
      */
     unsigned int
     n_pool_layouts() const
