@@ -6,7 +6,6 @@
 #include <mpm/time/explicit_scheme.h>
 #include <mpm/time/implicit_scheme.h>
 
-#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -617,12 +616,10 @@ namespace mpm
       }
 
     const double wall = wall_clock.wall_time();
-    rusage       usage;
-    getrusage(RUSAGE_SELF, &usage);
-    const double peak_memory_mb =
-      Utilities::MPI::sum(usage.ru_maxrss / 1024., communicator);
     Utilities::System::MemoryStats memory;
     Utilities::System::get_memory_stats(memory);
+    const double peak_memory_mb =
+      Utilities::MPI::sum(memory.VmHWM / 1024., communicator);
     const double end_memory_mb =
       Utilities::MPI::sum(memory.VmRSS / 1024., communicator);
     // A continued run reports the steps it took itself.
