@@ -140,6 +140,10 @@ main(int argc, char **argv)
                  "Bodies/block/Axis=0, 0, 0",
                  "Bodies/block/Radius=0.2",
                  "Gravity=0, 0, 0"}));
+  run_case("a body mesh of a polygon",
+           with({"Bodies/block/Shape=polygon",
+                 "Bodies/block/Vertices=0.2, 0.2; 0.8, 0.2; 0.5, 0.7",
+                 "Bodies/block/Point placement=body mesh"}));
   run_case("box corners with the wrong dimension",
            with({"Bodies/block/Lower corner=0.25, 0, 0"}));
   run_case("bad velocity expression",

@@ -30,8 +30,8 @@
 //   a load step, and every point stays in the run (on two ranks such
 //   points were lost before they were carried to their new rank);
 // - Newmark: the rolling disk of prm/rolling_disk.prm to 0.2 s with
-//   B-splines rolls (75 % to 105 % of the exact a t^2 / 2, as Q1 in
-//   tests/implicit);
+//   B-splines rolls (75 % to 105 % of the exact a t^2 / 2; tests/implicit
+//   holds Q1 to 3 % at 1 s);
 // - quasi-static: prm/rough_base.prm (a block pressed by p = 100 kPa onto
 //   a base with Coulomb friction) with B-splines and uGIMP: the base
 //   carries p B (vertical equilibrium, 1e-8). On two ranks the partition

@@ -1,3 +1,7 @@
+#include <deal.II/base/exceptions.h>
+
+#include <deal.II/grid/grid_generator.h>
+
 #include <mpm/base/shape.h>
 
 #include <algorithm>
@@ -6,6 +10,15 @@
 
 namespace mpm
 {
+  template <int dim>
+  void
+  Shape<dim>::fill_mesh(Triangulation<dim> &, const double) const
+  {
+    AssertThrow(false, ExcMessage("This shape has no mesh of its own."));
+  }
+
+
+
   template <int dim>
   BoxShape<dim>::BoxShape(const Point<dim> &lower, const Point<dim> &upper)
     : lower(lower)
@@ -64,6 +77,20 @@ namespace mpm
                    -1. :
                    1.;
     return n;
+  }
+
+
+
+  template <int dim>
+  void
+  BoxShape<dim>::fill_mesh(Triangulation<dim> &mesh,
+                           const double        cell_size) const
+  {
+    std::vector<unsigned int> repetitions(dim);
+    for (unsigned int d = 0; d < dim; ++d)
+      repetitions[d] = std::max(
+        1., std::ceil((upper[d] - lower[d]) / cell_size - 1e-9));
+    GridGenerator::subdivided_hyper_rectangle(mesh, repetitions, lower, upper);
   }
 
 
@@ -253,6 +280,25 @@ namespace mpm
 
 
 
+  template <int dim>
+  void
+  BallShape<dim>::fill_mesh(Triangulation<dim> &mesh,
+                            const double        cell_size) const
+  {
+    // The spherical manifold on the whole ball but its central cell, and a
+    // transfinite interpolation there: refinement keeps the cells' sizes
+    // even and the surface round.
+    GridGenerator::hyper_ball_balanced(mesh, center, radius);
+    const double volume = dim == 2 ? numbers::PI * radius * radius :
+                                     4. / 3. * numbers::PI * std::pow(radius, 3);
+    while (volume / mesh.n_active_cells() > std::pow(cell_size, dim))
+      mesh.refine_global(1);
+  }
+
+
+
+  template class Shape<2>;
+  template class Shape<3>;
   template class BoxShape<2>;
   template class BoxShape<3>;
   template class BallShape<2>;

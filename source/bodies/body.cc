@@ -24,17 +24,27 @@ namespace mpm
     prm.declare_entry("Material", "", Patterns::Anything(),
                       "Name of the material (one of Materials/Names).");
     prm.declare_entry("Points per cell direction", "2", Patterns::Integer(1, 10),
-                      "Material points per background cell and direction, "
-                      "placed at the centres of a regular n x n (x n) "
-                      "subdivision of each cell. A point belongs to the first "
-                      "body, in the order of Bodies/Names, that contains it.");
+                      "Material points per background cell and direction "
+                      "(with Point placement = body mesh: per cell of the "
+                      "body's own mesh and direction). A point belongs to "
+                      "the first body, in the order of Bodies/Names, that "
+                      "contains it.");
     prm.declare_entry("Point placement", "centres",
-                      Patterns::Selection("centres|Gauss"),
+                      Patterns::Selection("centres|Gauss|body mesh"),
                       "centres: points at the centres of a regular n x n "
                       "(x n) subdivision of each cell, with equal volumes. "
                       "Gauss: points at the n x n (x n) Gauss points, with "
                       "the Gauss weights (the material points of a FE "
-                      "solution with the same quadrature).");
+                      "solution with the same quadrature). body mesh: the "
+                      "body gets a mesh of its own (a box: a grid of "
+                      "bricks; a disk or sphere: deal.II's ball), with "
+                      "cells about as large as the background grid's "
+                      "smallest, and a point at each of the n x n (x n) "
+                      "Gauss points of its cells with the volume they "
+                      "stand for: the points then follow the body's "
+                      "surface instead of the grid's cells, so a disk is "
+                      "round rather than a staircase with a flat bottom "
+                      "(what a disk that rolls needs).");
     prm.declare_entry("Initial stress", "none",
                       Patterns::Selection("none|geostatic"),
                       "none: the body starts unstressed, and gravity acts "
@@ -100,7 +110,8 @@ namespace mpm
       throw InputError(section_path + ": an inflow (First release > 0 or "
                        "Releases > 1) starts with Initial stress = none.");
     const unsigned int n = prm.get_integer("Points per cell direction");
-    if (prm.get("Point placement") == "Gauss")
+    own_mesh = prm.get("Point placement") == "body mesh";
+    if (prm.get("Point placement") != "centres")
       placement_1d = QGauss<1>(n);
     else
       placement_1d = QIterated<1>(QMidpoint<1>(), n);
@@ -109,6 +120,10 @@ namespace mpm
     // sphere or cylinder end.
     Point<dim> center;
     shape = ShapeParameters<dim>::create(prm, section_path, center);
+    if (own_mesh && !shape->has_mesh())
+      throw InputError(section_path + "/Point placement = body mesh needs a "
+                       "box, disk or sphere (Shape = " + prm.get("Shape") +
+                       ").");
 
     const std::string material_name = prm.get("Material");
     const auto        found =

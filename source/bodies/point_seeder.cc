@@ -1,4 +1,12 @@
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q.h>
+
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/grid_tools_cache.h>
 
 #include <mpm/bodies/point_seeder.h>
 #include <mpm/base/input_error.h>
@@ -188,6 +196,8 @@ namespace mpm
           continue;
         for (const unsigned int b : which)
           {
+            if (bodies[b].placed_on_own_mesh())
+              continue;
             const Quadrature<dim> &placement = bodies[b].point_placement();
             for (unsigned int k = 0; k < placement.size(); ++k)
               {
@@ -221,6 +231,84 @@ namespace mpm
                 size *= std::pow(volume / box, 1. / dim);
                 visit({x, reference, cell, volume, size, b});
               }
+          }
+      }
+    for (const unsigned int b : which)
+      if (bodies[b].placed_on_own_mesh())
+        for_each_own_mesh_candidate(bodies, which, b, present, occupied, visit);
+  }
+
+
+
+  template <int dim>
+  void
+  PointSeeder<dim>::for_each_own_mesh_candidate(
+    const std::vector<Body<dim>> &                bodies,
+    const std::vector<unsigned int> &             which,
+    const unsigned int                            b,
+    const Particles::ParticleHandler<dim> *       present,
+    bool &                                        occupied,
+    const std::function<void(const Candidate &)> &visit) const
+  {
+    // Every rank meshes the whole body, the same way, and finds which of
+    // the points lie in its own cells.
+    Triangulation<dim> mesh;
+    bodies[b].region().fill_mesh(mesh, grid.minimum_cell_size());
+    // A cubic mapping that follows the manifolds: the volumes add up to the
+    // curved body's, not to its polygon's.
+    const MappingQ<dim>    body_mapping(3);
+    const FE_Q<dim>        fe(1);
+    const Quadrature<dim> &placement = bodies[b].point_placement();
+    FEValues<dim>          values(body_mapping,
+                         fe,
+                         placement,
+                         update_quadrature_points | update_JxW_values);
+    std::vector<Point<dim>> positions;
+    std::vector<double>     volumes;
+    for (const auto &cell : mesh.active_cell_iterators())
+      {
+        values.reinit(cell);
+        for (unsigned int k = 0; k < placement.size(); ++k)
+          {
+            positions.push_back(values.quadrature_point(k));
+            volumes.push_back(values.JxW(k));
+          }
+      }
+
+    // Each rank finds the points in its own cells; a point on a face
+    // between two ranks' cells goes to one of them (tests/body_mesh).
+    const GridTools::Cache<dim> cache(grid.get_triangulation(),
+                                      grid.get_mapping());
+    const auto located =
+      GridTools::compute_point_locations_try_all(cache, positions);
+    const auto &cells      = std::get<0>(located);
+    const auto &references = std::get<1>(located);
+    const auto &indices    = std::get<2>(located);
+    for (unsigned int c = 0; c < cells.size(); ++c)
+      {
+        if (!cells[c]->is_locally_owned())
+          continue;
+        for (unsigned int q = 0; q < indices[c].size(); ++q)
+          {
+            const unsigned int i = indices[c][q];
+            const Point<dim>  &x = positions[i];
+            bool owned_by_earlier_body = false;
+            for (const unsigned int e : which)
+              if (e < b && bodies[e].contains(x))
+                owned_by_earlier_body = true;
+            if (owned_by_earlier_body)
+              continue;
+            if (present != nullptr && present->n_particles_in_cell(cells[c]) > 0)
+              occupied = true;
+            // The point's domain: a cube of its volume.
+            Tensor<1, dim> size;
+            for (unsigned int d = 0; d < dim; ++d)
+              size[d] = std::pow(volumes[i], 1. / dim);
+            // Found within a round-off of the cell.
+            Point<dim> reference = references[c][q];
+            for (unsigned int d = 0; d < dim; ++d)
+              reference[d] = std::clamp(reference[d], 0., 1.);
+            visit({x, reference, cells[c], volumes[i], size, b});
           }
       }
   }

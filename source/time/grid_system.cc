@@ -566,10 +566,23 @@ namespace mpm
               {
                 const double gap_before =
                   (cell->vertex(v) - particle.get_location()) * *outward;
-                const double gap = (cell->vertex(v) - x) * *outward;
+                const Tensor<1, dim> to_node = cell->vertex(v) - x;
+                const double         gap     = to_node * *outward;
+                // A node stands for the wall up to half a cell on either
+                // side (as its lumped mass stands for half a cell of
+                // material), and holds the material that touches that
+                // part: a disk that rolls then pivots on the node nearest
+                // to where it touches, not on the far node of the cell,
+                // which would hold it back by up to a cell's lever arm.
+                const Tensor<1, dim> along  = to_node - gap * *outward;
+                bool                 within = true;
+                for (unsigned int a = 0; a < dim; ++a)
+                  within = within && std::abs(along[a]) <=
+                                       (0.5 + 1e-9) *
+                                         cell->extent_in_direction(a);
                 // A point seeded on a wall lies half its spacing from
                 // it: touching, whatever the round-off of the volume.
-                if (gap < (1. + 1e-9) * reach &&
+                if (within && gap < (1. + 1e-9) * reach &&
                     (!after_solve || gap < gap_before))
                   flags(cell->vertex_dof_index(v, 0, 0) + wall) += 1.;
               }

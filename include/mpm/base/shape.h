@@ -3,6 +3,7 @@
 
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
+#include <deal.II/grid/tria.h>
 
 #include <vector>
 
@@ -37,6 +38,22 @@ namespace mpm
     /** The outward unit normal of the surface point nearest to x. */
     virtual Tensor<1, dim>
     outward_normal(const Point<dim> &x) const = 0;
+
+    /** Whether fill_mesh() can mesh the shape. */
+    virtual bool
+    has_mesh() const
+    {
+      return false;
+    }
+
+    /**
+     * Fill `mesh` (empty) with cells that fit the shape, none larger than
+     * `cell_size` across on average, with manifolds attached so that a
+     * curved surface stays curved under a higher-order mapping. Only for
+     * shapes with has_mesh().
+     */
+    virtual void
+    fill_mesh(Triangulation<dim> &mesh, const double cell_size) const;
 
     /**
      * Whether the shape comes within half a grid cell's diameter of the
@@ -75,6 +92,16 @@ namespace mpm
     Tensor<1, dim>
     outward_normal(const Point<dim> &x) const override;
 
+    bool
+    has_mesh() const override
+    {
+      return true;
+    }
+
+    /** Cells of about cell_size along each edge. */
+    void
+    fill_mesh(Triangulation<dim> &mesh, const double cell_size) const override;
+
   private:
     /** Per direction, how far x is beyond the nearer face (< 0 inside). */
     Tensor<1, dim>
@@ -107,6 +134,16 @@ namespace mpm
 
     Tensor<1, dim>
     outward_normal(const Point<dim> &x) const override;
+
+    bool
+    has_mesh() const override
+    {
+      return true;
+    }
+
+    /** deal.II's ball, refined until its mean cell is cell_size^dim. */
+    void
+    fill_mesh(Triangulation<dim> &mesh, const double cell_size) const override;
 
   private:
     Point<dim> center;

@@ -74,6 +74,17 @@ namespace mpm
     }
 
     /**
+     * Whether the points sit at the placement's points in the cells of a
+     * mesh of the body's own (region().fill_mesh()) rather than in the
+     * background grid's cells.
+     */
+    bool
+    placed_on_own_mesh() const
+    {
+      return own_mesh;
+    }
+
+    /**
      * The 1D weight in direction d of the k-th placement point: the share
      * of the cell's extent in d that the point stands for.
      */
@@ -136,6 +147,7 @@ namespace mpm
     double                  release_interval = 0.;
     /** K0 of the geostatic stress; negative: no initial stress. */
     double                  geostatic_k0 = -1.;
+    bool                    own_mesh = false;
     Quadrature<1>           placement_1d;
     Quadrature<dim>         placement;
     std::unique_ptr<FunctionParser<dim>> velocity;

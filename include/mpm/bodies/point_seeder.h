@@ -115,6 +115,21 @@ namespace mpm
       bool &                                        occupied,
       const std::function<void(const Candidate &)> &visit) const;
 
+    /**
+     * for_each_candidate() for body `b`, whose points sit at the Gauss
+     * points of a mesh of its own: grouped by the grid cell they lie in,
+     * each point seeded by one rank only, points outside the grid left
+     * out.
+     */
+    void
+    for_each_own_mesh_candidate(
+      const std::vector<Body<dim>> &                bodies,
+      const std::vector<unsigned int> &             which,
+      const unsigned int                            b,
+      const Particles::ParticleHandler<dim> *       present,
+      bool &                                        occupied,
+      const std::function<void(const Candidate &)> &visit) const;
+
     /** How many points for_each_candidate() visits. */
     std::uint64_t
     count_candidates(const std::vector<Body<dim>> &          bodies,

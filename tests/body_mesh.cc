@@ -1,0 +1,135 @@
+// Points on a mesh of the body's own (Point placement = body mesh,
+// scenes/body_mesh.prm, h = 0.05): a disk of radius 0.2 and a box whose
+// sides lie off the grid lines, then a sphere in 3D. Checked against the
+// geometry:
+// - the disk: deal.II's balanced ball (12 cells) refined twice, 192 cells
+//   of 0.065 m^2 / 100 on average (no larger than h^2), 2 x 2 Gauss points
+//   each: 768 points. Their mass is rho pi R^2 within 1e-5 (the cubic
+//   mapping follows the circle; straight-sided cells would lose 0.6 %),
+//   their centre of mass is the disk's centre and their extent is the same
+//   in the four directions (1e-12: the ball mesh is symmetric);
+// - the box, 0.33 x 0.28 m: 7 x 6 cells (no wider than h), 168 points,
+//   mass rho times its area and centre of mass at its centre (1e-12), and
+//   the outermost points half a Gauss offset inside each side: the
+//   lowest at y = 0.13 + (1 - 1/sqrt 3) / 2 times 0.28 / 6 (1e-12);
+// - both at once: the sum of the two;
+// - a box of 7 x 7 cells of one point each, whose points all lie on grid
+//   nodes, across the two ranks' cells: 49 points, each seeded once;
+// - the sphere (R = 0.3, h = 0.1): the balanced ball (32 cells) refined
+//   once, 256 cells of 2 x 2 x 2 points: 2048 points, mass 4/3 pi R^3 rho
+//   within 1e-4, centre of mass at its centre (1e-12).
+// On two ranks each point is seeded by one rank only: the same counts and
+// masses.
+
+#include <deal.II/base/mpi.h>
+
+#include <cmath>
+
+#include "tests.h"
+
+using namespace dealii;
+
+namespace {
+constexpr double rho = 1000.;
+
+/** Either body alone: the other moved out of the grid. */
+const std::vector<std::string> box_away = {"Bodies/box/Lower corner=2, 2",
+                                           "Bodies/box/Upper corner=3, 3"};
+const std::vector<std::string> disk_away = {"Bodies/disk/Center=5, 5"};
+
+/** The time series of the scene (one step) with `settings`. */
+mpm_tests::Columns seeded(const std::string &directory,
+                          const std::vector<std::string> &settings) {
+  std::vector<std::string> all;
+  all.insert(all.end(), settings.begin(), settings.end());
+  return mpm_tests::run_scene("scenes/body_mesh.prm", directory, all);
+}
+} // namespace
+
+int main(int argc, char **argv) {
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  mpm_tests::initlog();
+  const double pi = numbers::PI;
+
+  {
+    auto csv = seeded("output-disk", box_away);
+    deallog << "disk: " << static_cast<unsigned int>(csv["points"][0])
+            << " points" << std::endl;
+    const double R = 0.2, cx = 0.3, cy = 0.5;
+    const double extents[4] = {csv["max_x"][0] - cx, cx - csv["min_x"][0],
+                               csv["max_y"][0] - cy, cy - csv["min_y"][0]};
+    bool symmetric = true;
+    for (const double e : extents)
+      symmetric = symmetric && std::abs(e - extents[0]) < 1e-12 && e < R;
+    mpm_tests::check("disk: 768 points, mass rho pi R^2 within 1e-5",
+                     csv["points"][0] == 768. &&
+                         std::abs(csv["mass"][0] / (rho * pi * R * R) - 1.) <
+                             1e-5);
+    mpm_tests::check("disk: centre of mass at its centre, extent the same "
+                     "in four directions (1e-12)",
+                     std::abs(csv["centre_of_mass_x"][0] - cx) < 1e-12 &&
+                         std::abs(csv["centre_of_mass_y"][0] - cy) < 1e-12 &&
+                         symmetric);
+  }
+
+  {
+    auto csv = seeded("output-box", disk_away);
+    deallog << "box: " << static_cast<unsigned int>(csv["points"][0])
+            << " points" << std::endl;
+    const double offset = (1. - 1. / std::sqrt(3.)) / 2.;
+    mpm_tests::check(
+        "box: 168 points, mass rho times its area, centre of mass at its "
+        "centre, outermost points half a Gauss offset inside (1e-12)",
+        csv["points"][0] == 168. &&
+            std::abs(csv["mass"][0] - rho * 0.33 * 0.28) < 1e-12 * rho &&
+            std::abs(csv["centre_of_mass_x"][0] - 0.765) < 1e-12 &&
+            std::abs(csv["centre_of_mass_y"][0] - 0.27) < 1e-12 &&
+            std::abs(csv["min_x"][0] - (0.6 + offset * 0.33 / 7.)) < 1e-12 &&
+            std::abs(csv["min_y"][0] - (0.13 + offset * 0.28 / 6.)) < 1e-12 &&
+            std::abs(csv["max_y"][0] - (0.41 - offset * 0.28 / 6.)) < 1e-12);
+  }
+
+  {
+    auto disk = seeded("output-disk", box_away);
+    auto box = seeded("output-box", disk_away);
+    auto both = seeded("output-both", {});
+    mpm_tests::check(
+        "disk and box together: the sum of the two",
+        both["points"][0] == disk["points"][0] + box["points"][0] &&
+            std::abs(both["mass"][0] - disk["mass"][0] - box["mass"][0]) <
+                1e-12 * rho);
+  }
+
+  {
+    auto csv =
+        seeded("output-on-nodes", {"Bodies/disk/Center=5, 5",
+                                   "Bodies/box/Lower corner=0.575, 0.325",
+                                   "Bodies/box/Upper corner=0.925, 0.675",
+                                   "Bodies/box/Points per cell direction=1"});
+    mpm_tests::check("points on grid nodes: 49, each seeded once",
+                     csv["points"][0] == 49. &&
+                         std::abs(csv["mass"][0] - rho * 0.35 * 0.35) <
+                             1e-12 * rho);
+  }
+
+  {
+    auto csv = seeded(
+        "output-sphere",
+        {"Dimension=3", "Grid/Arguments=10, 10, 10 : 0, 0, 0 : 1, 1, 1 : true",
+         "Bodies/box/Lower corner=2, 2, 2", "Bodies/box/Upper corner=3, 3, 3",
+         "Bodies/disk/Shape=sphere", "Bodies/disk/Center=0.5, 0.5, 0.5",
+         "Bodies/disk/Radius=0.3"});
+    deallog << "sphere: " << static_cast<unsigned int>(csv["points"][0])
+            << " points" << std::endl;
+    const double R = 0.3;
+    mpm_tests::check(
+        "sphere: 2048 points, mass 4/3 pi R^3 rho within 1e-4, centre of "
+        "mass at its centre (1e-12)",
+        csv["points"][0] == 2048. &&
+            std::abs(csv["mass"][0] / (rho * 4. / 3. * pi * R * R * R) - 1.) <
+                1e-4 &&
+            std::abs(csv["centre_of_mass_x"][0] - 0.5) < 1e-12 &&
+            std::abs(csv["centre_of_mass_y"][0] - 0.5) < 1e-12 &&
+            std::abs(csv["centre_of_mass_z"][0] - 0.5) < 1e-12);
+  }
+}
