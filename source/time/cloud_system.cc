@@ -300,9 +300,10 @@ namespace mpm
     unsigned int released = 0, engaged = 0;
     // A node held by a contact wall lets go when the wall pulls. As on
     // the grid, a point that the step brings within half its spacing
-    // of a wall, moving towards it, engages the nodes next to it
-    // (within one nodal spacing) that lie within that distance of the
-    // wall or beyond it.
+    // of a wall, moving towards it, engages the nodes next to it (within
+    // half a nodal spacing of it along the wall: a node stands for its
+    // own stretch of the wall) that lie within that distance of the wall
+    // or beyond it.
     // The cloud's outer nodes reach a wall before the material does,
     // so the nodes alone cannot tell; and a held node far from the
     // material would be a pivot that levers the body off the wall.
@@ -347,8 +348,11 @@ namespace mpm
               {
                 const unsigned int node = support.nodes[k];
                 const Point<dim> &x_node = cloud.positions[node];
+                const Tensor<1, dim> to_node = x_node - x_new;
+                const Tensor<1, dim> along =
+                  to_node - (to_node * c.outward) * c.outward;
                 if (c.offset - c.outward * x_node < reach &&
-                    x_node.distance(x_new) < cloud.spacing())
+                    along.norm() <= (0.5 + 1e-9) * cloud.spacing())
                   {
                     to_engage.push_back(node);
                     to_engage.push_back(w);
