@@ -204,13 +204,7 @@ namespace mpm
                 const Point<dim> &reference = placement.point(k);
                 const Point<dim>  x =
                   mapping.transform_unit_to_real_cell(cell, reference);
-                if (!bodies[b].contains(x))
-                  continue;
-                bool owned_by_earlier_body = false;
-                for (const unsigned int e : which)
-                  if (e < b && bodies[e].contains(x))
-                    owned_by_earlier_body = true;
-                if (owned_by_earlier_body)
+                if (!bodies[b].contains(x) || claimed_earlier(bodies, which, b, x))
                   continue;
                 if (present != nullptr && present->n_particles_in_cell(cell) > 0)
                   occupied = true;
@@ -292,11 +286,7 @@ namespace mpm
           {
             const unsigned int i = indices[c][q];
             const Point<dim>  &x = positions[i];
-            bool owned_by_earlier_body = false;
-            for (const unsigned int e : which)
-              if (e < b && bodies[e].contains(x))
-                owned_by_earlier_body = true;
-            if (owned_by_earlier_body)
+            if (claimed_earlier(bodies, which, b, x))
               continue;
             if (present != nullptr && present->n_particles_in_cell(cells[c]) > 0)
               occupied = true;
@@ -311,6 +301,21 @@ namespace mpm
             visit({x, reference, cells[c], volumes[i], size, b});
           }
       }
+  }
+
+
+
+  template <int dim>
+  bool
+  PointSeeder<dim>::claimed_earlier(const std::vector<Body<dim>> &   bodies,
+                                    const std::vector<unsigned int> &which,
+                                    const unsigned int               b,
+                                    const Point<dim> &               x)
+  {
+    for (const unsigned int e : which)
+      if (e < b && bodies[e].contains(x))
+        return true;
+    return false;
   }
 
 

@@ -130,6 +130,16 @@ namespace mpm
       bool &                                        occupied,
       const std::function<void(const Candidate &)> &visit) const;
 
+    /**
+     * Whether a body released with body `b` and before it in Bodies/Names
+     * contains x: the point is that body's.
+     */
+    static bool
+    claimed_earlier(const std::vector<Body<dim>> &   bodies,
+                    const std::vector<unsigned int> &which,
+                    const unsigned int               b,
+                    const Point<dim> &               x);
+
     /** How many points for_each_candidate() visits. */
     std::uint64_t
     count_candidates(const std::vector<Body<dim>> &          bodies,
