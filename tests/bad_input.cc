@@ -144,6 +144,9 @@ main(int argc, char **argv)
            with({"Bodies/block/Shape=polygon",
                  "Bodies/block/Vertices=0.2, 0.2; 0.8, 0.2; 0.5, 0.7",
                  "Bodies/block/Point placement=body mesh"}));
+  run_case("a body mesh of more than 2^21 cells",
+           with({"Bodies/block/Upper corner=1000, 1000",
+                 "Bodies/block/Point placement=body mesh"}));
   run_case("box corners with the wrong dimension",
            with({"Bodies/block/Lower corner=0.25, 0, 0"}));
   run_case("bad velocity expression",

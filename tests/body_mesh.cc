@@ -14,7 +14,8 @@
 //   lowest at y = 0.13 + (1 - 1/sqrt 3) / 2 times 0.28 / 6 (1e-12);
 // - both at once: the sum of the two;
 // - a box of 7 x 7 cells of one point each, whose points all lie on grid
-//   nodes, across the two ranks' cells: 49 points, each seeded once;
+//   nodes, across the two ranks' cells: 49 points, each seeded once, on
+//   the grid as 400 coarse cells and as 25 refined twice;
 // - the sphere (R = 0.3, h = 0.1): the balanced ball (32 cells) refined
 //   once, 256 cells of 2 x 2 x 2 points: 2048 points, mass 4/3 pi R^3 rho
 //   within 1e-4, centre of mass at its centre (1e-12).
@@ -100,17 +101,26 @@ int main(int argc, char **argv) {
                 1e-12 * rho);
   }
 
-  {
-    auto csv =
-        seeded("output-on-nodes", {"Bodies/disk/Center=5, 5",
-                                   "Bodies/box/Lower corner=0.575, 0.325",
-                                   "Bodies/box/Upper corner=0.925, 0.675",
-                                   "Bodies/box/Points per cell direction=1"});
-    mpm_tests::check("points on grid nodes: 49, each seeded once",
-                     csv["points"][0] == 49. &&
+  // The same grid as 400 coarse cells and as 25 refined twice: on the
+  // refined one each rank has ghost and artificial cells of its own.
+  for (const std::string grid : {"20, 20", "5, 5"})
+    {
+      auto csv =
+        seeded("output-on-nodes",
+               {"Grid/Arguments=" + grid + " : 0, 0 : 1, 1 : true",
+                std::string("Grid/Global refinements=") +
+                  (grid == "5, 5" ? "2" : "0"),
+                "Bodies/disk/Center=5, 5",
+                "Bodies/box/Lower corner=0.575, 0.325",
+                "Bodies/box/Upper corner=0.925, 0.675",
+                "Bodies/box/Points per cell direction=1"});
+      mpm_tests::check("points on grid nodes (" + grid +
+                         " coarse cells): 49, each seeded once",
+                       csv["points"][0] == 49. &&
                          std::abs(csv["mass"][0] - rho * 0.35 * 0.35) <
-                             1e-12 * rho);
-  }
+                           1e-12 * rho);
+    }
+
 
   {
     auto csv = seeded(

@@ -2,6 +2,7 @@
 
 #include <deal.II/grid/grid_generator.h>
 
+#include <mpm/base/input_error.h>
 #include <mpm/base/shape.h>
 
 #include <algorithm>
@@ -15,6 +16,17 @@ namespace mpm
   Shape<dim>::fill_mesh(Triangulation<dim> &, const double) const
   {
     AssertThrow(false, ExcMessage("This shape has no mesh of its own."));
+  }
+
+
+
+  template <int dim>
+  void
+  Shape<dim>::throw_too_many_cells()
+  {
+    throw InputError("Point placement = body mesh: the body would need more "
+                     "than 2^21 cells of the grid's smallest size; use a "
+                     "coarser grid or Point placement = centres.");
   }
 
 
@@ -87,9 +99,16 @@ namespace mpm
                            const double        cell_size) const
   {
     std::vector<unsigned int> repetitions(dim);
+    double                    n_cells = 1.;
     for (unsigned int d = 0; d < dim; ++d)
-      repetitions[d] = std::max(
-        1., std::ceil((upper[d] - lower[d]) / cell_size - 1e-9));
+      {
+        const double n =
+          std::max(1., std::ceil((upper[d] - lower[d]) / cell_size - 1e-9));
+        n_cells *= n;
+        if (n_cells > Shape<dim>::max_mesh_cells)
+          Shape<dim>::throw_too_many_cells();
+        repetitions[d] = static_cast<unsigned int>(n);
+      }
     GridGenerator::subdivided_hyper_rectangle(mesh, repetitions, lower, upper);
   }
 
@@ -285,14 +304,17 @@ namespace mpm
   BallShape<dim>::fill_mesh(Triangulation<dim> &mesh,
                             const double        cell_size) const
   {
-    // The spherical manifold on the whole ball but its central cell, and a
-    // transfinite interpolation there: refinement keeps the cells' sizes
-    // even and the surface round.
+    // deal.II's balanced ball (cells of even size), with a spherical
+    // manifold on its surface: refinement keeps the surface round.
     GridGenerator::hyper_ball_balanced(mesh, center, radius);
     const double volume = dim == 2 ? numbers::PI * radius * radius :
                                      4. / 3. * numbers::PI * std::pow(radius, 3);
     while (volume / mesh.n_active_cells() > std::pow(cell_size, dim))
-      mesh.refine_global(1);
+      {
+        if (mesh.n_active_cells() * std::pow(2., dim) > Shape<dim>::max_mesh_cells)
+          Shape<dim>::throw_too_many_cells();
+        mesh.refine_global(1);
+      }
   }
 
 

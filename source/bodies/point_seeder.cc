@@ -247,7 +247,14 @@ namespace mpm
     // Every rank meshes the whole body, the same way, and finds which of
     // the points lie in its own cells.
     Triangulation<dim> mesh;
-    bodies[b].region().fill_mesh(mesh, grid.minimum_cell_size());
+    try
+      {
+        bodies[b].region().fill_mesh(mesh, grid.minimum_cell_size());
+      }
+    catch (const InputError &error)
+      {
+        throw InputError("Bodies/" + bodies[b].name() + "/" + error.what());
+      }
     // A cubic mapping that follows the manifolds: the volumes add up to the
     // curved body's, not to its polygon's.
     const MappingQ<dim>    body_mapping(3);
@@ -269,12 +276,22 @@ namespace mpm
           }
       }
 
-    // Each rank finds the points in its own cells; a point on a face
-    // between two ranks' cells goes to one of them (tests/body_mesh).
+    // Each rank keeps the points it finds in its own cells. A point on a
+    // face between cells (a box whose points fall on grid lines) could be
+    // found in a different cell by each rank, which searches its own
+    // ghost and artificial cells too: seeded twice or not at all. Every
+    // rank looks for each point a tiny, uneven shift away instead, a
+    // billionth of a cell, beyond the search's tolerance, which lies
+    // inside one cell only.
+    const double            shift = 1e-9 * grid.minimum_cell_size();
+    std::vector<Point<dim>> shifted(positions);
+    for (Point<dim> &x : shifted)
+      for (unsigned int d = 0; d < dim; ++d)
+        x[d] += shift * (1. + 0.1 * d);
     const GridTools::Cache<dim> cache(grid.get_triangulation(),
                                       grid.get_mapping());
     const auto located =
-      GridTools::compute_point_locations_try_all(cache, positions);
+      GridTools::compute_point_locations_try_all(cache, shifted);
     const auto &cells      = std::get<0>(located);
     const auto &references = std::get<1>(located);
     const auto &indices    = std::get<2>(located);
@@ -294,7 +311,7 @@ namespace mpm
             Tensor<1, dim> size;
             for (unsigned int d = 0; d < dim; ++d)
               size[d] = std::pow(volumes[i], 1. / dim);
-            // Found within a round-off of the cell.
+            // Found a billionth of a cell away: clamped into the cell.
             Point<dim> reference = references[c][q];
             for (unsigned int d = 0; d < dim; ++d)
               reference[d] = std::clamp(reference[d], 0., 1.);

@@ -351,8 +351,11 @@ namespace mpm
                 const Tensor<1, dim> to_node = x_node - x_new;
                 const Tensor<1, dim> along =
                   to_node - (to_node * c.outward) * c.outward;
-                if (c.offset - c.outward * x_node < reach &&
-                    along.norm() <= (0.5 + 1e-9) * cloud.spacing())
+                bool within = true;
+                for (unsigned int a = 0; a < dim; ++a)
+                  within = within && std::abs(along[a]) <=
+                                       (0.5 + 1e-9) * cloud.spacing();
+                if (c.offset - c.outward * x_node < reach && within)
                   {
                     to_engage.push_back(node);
                     to_engage.push_back(w);

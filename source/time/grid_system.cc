@@ -574,6 +574,10 @@ namespace mpm
                 // part: a disk that rolls then pivots on the node nearest
                 // to where it touches, not on the far node of the cell,
                 // which would hold it back by up to a cell's lever arm.
+                // Contact walls are axis-aligned (slanted ones are
+                // refused), so each axis is compared with the cell's
+                // extent along it; on a distorted cell that is the
+                // extent of its reference direction, an estimate.
                 const Tensor<1, dim> along  = to_node - gap * *outward;
                 bool                 within = true;
                 for (unsigned int a = 0; a < dim; ++a)

@@ -55,6 +55,15 @@ namespace mpm
     virtual void
     fill_mesh(Triangulation<dim> &mesh, const double cell_size) const;
 
+  protected:
+    /** The most cells a body's own mesh may have. */
+    static constexpr double max_mesh_cells = 2097152.;
+
+    /** The input error of a body whose mesh would be too large. */
+    [[noreturn]] static void
+    throw_too_many_cells();
+
+  public:
     /**
      * Whether the shape comes within half a grid cell's diameter of the
      * cell's centre: the cells that a body's or a region's refinement

@@ -25,7 +25,9 @@ namespace mpm
   /**
    * Puts the material points of bodies into the grid, at any time of a run
    * (the bodies of a scene at its start; an inflow again later). Each rank
-   * fills its own cells, so no point needs a global search. Ids continue
+   * fills its own cells: with the grid's cells as placement, no point
+   * needs a global search; a body on a mesh of its own is meshed whole on
+   * every rank, and each keeps the points in its own cells. Ids continue
    * from `next_id`, which is the same on every rank and is saved in
    * checkpoints, so ids stay unique however often points are added.
    */
@@ -42,7 +44,8 @@ namespace mpm
      * points of the released bodies that contain them (a point inside
      * several bodies goes to the first), at the positions of the body's
      * point placement (a quadrature on the reference cell), each with
-     * volume det J times its weight (exact for bilinear cells), mass from
+     * volume det J times its weight (exact for bilinear cells), or at the
+     * Gauss points of the body's own mesh with their JxW; mass from
      * the body's density, the law's seeded state and the body's initial
      * velocity. A release after the start into cells that hold material
      * is refused. Returns whether points were added.
@@ -103,7 +106,8 @@ namespace mpm
 
     /**
      * Visit the points of the bodies `which` in the locally owned cells,
-     * in the order of the cells; with `present`, `occupied` is set if one
+     * in the order of the cells (then those of the bodies on meshes of
+     * their own, body by body); with `present`, `occupied` is set if one
      * of their cells holds a point of it. They are visited, not collected:
      * a list of them would hold as much memory as the points themselves.
      */
