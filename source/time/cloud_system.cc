@@ -300,10 +300,9 @@ namespace mpm
     unsigned int released = 0, engaged = 0;
     // A node held by a contact wall lets go when the wall pulls. As on
     // the grid, a point that the step brings within half its spacing
-    // of a wall, moving towards it, engages the nodes next to it (within
-    // half a nodal spacing of it along the wall: a node stands for its
-    // own stretch of the wall) that lie within that distance of the wall
-    // or beyond it.
+    // of a wall, moving towards it, engages the nodes next to it that
+    // stand for the stretch of the wall it touches (on_node_stretch) and
+    // lie within that distance of the wall or beyond it.
     // The cloud's outer nodes reach a wall before the material does,
     // so the nodes alone cannot tell; and a held node far from the
     // material would be a pivot that levers the body off the wall.
@@ -327,6 +326,9 @@ namespace mpm
           released += cloud.held_by_walls.release_if_pulling(i, w, pull);
         }
     std::vector<unsigned int> to_engage;
+    Tensor<1, dim>            spacing;
+    for (unsigned int a = 0; a < dim; ++a)
+      spacing[a] = cloud.spacing();
     for (const auto &group : state.groups)
       {
         const Support<dim> &support = group.supports[0];
@@ -348,14 +350,10 @@ namespace mpm
               {
                 const unsigned int node = support.nodes[k];
                 const Point<dim> &x_node = cloud.positions[node];
-                const Tensor<1, dim> to_node = x_node - x_new;
-                const Tensor<1, dim> along =
-                  to_node - (to_node * c.outward) * c.outward;
-                bool within = true;
-                for (unsigned int a = 0; a < dim; ++a)
-                  within = within && std::abs(along[a]) <=
-                                       (0.5 + 1e-9) * cloud.spacing();
-                if (c.offset - c.outward * x_node < reach && within)
+                if (c.offset - c.outward * x_node < reach &&
+                    this->on_node_stretch(x_node - x_new,
+                                          c.outward,
+                                          spacing))
                   {
                     to_engage.push_back(node);
                     to_engage.push_back(w);

@@ -544,6 +544,11 @@ namespace mpm
           }
         if (contact_vertices.empty())
           continue;
+        // The node spacing along each axis, for on_node_stretch(); on a
+        // distorted cell that of its reference directions, an estimate.
+        Tensor<1, dim> spacing;
+        for (unsigned int a = 0; a < dim; ++a)
+          spacing[a] = cell->extent_in_direction(a);
         for (const auto &particle :
              this->points.handler().particles_in_cell(cell))
           {
@@ -568,25 +573,10 @@ namespace mpm
                   (cell->vertex(v) - particle.get_location()) * *outward;
                 const Tensor<1, dim> to_node = cell->vertex(v) - x;
                 const double         gap     = to_node * *outward;
-                // A node stands for the wall up to half a cell on either
-                // side (as its lumped mass stands for half a cell of
-                // material), and holds the material that touches that
-                // part: a disk that rolls then pivots on the node nearest
-                // to where it touches, not on the far node of the cell,
-                // which would hold it back by up to a cell's lever arm.
-                // Contact walls are axis-aligned (slanted ones are
-                // refused), so each axis is compared with the cell's
-                // extent along it; on a distorted cell that is the
-                // extent of its reference direction, an estimate.
-                const Tensor<1, dim> along  = to_node - gap * *outward;
-                bool                 within = true;
-                for (unsigned int a = 0; a < dim; ++a)
-                  within = within && std::abs(along[a]) <=
-                                       (0.5 + 1e-9) *
-                                         cell->extent_in_direction(a);
                 // A point seeded on a wall lies half its spacing from
                 // it: touching, whatever the round-off of the volume.
-                if (within && gap < (1. + 1e-9) * reach &&
+                if (this->on_node_stretch(to_node, *outward, spacing) &&
+                    gap < (1. + 1e-9) * reach &&
                     (!after_solve || gap < gap_before))
                   flags(cell->vertex_dof_index(v, 0, 0) + wall) += 1.;
               }

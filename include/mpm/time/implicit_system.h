@@ -116,6 +116,28 @@ namespace mpm
                             1. / dim);
     }
 
+    /**
+     * Whether a wall node, `to_node` away from a point on a wall with
+     * unit normal `outward`, stands for the stretch of the wall that the
+     * point touches: along each axis within half the node spacing
+     * `spacing[a]` of it. A node stands for the wall up to half a spacing
+     * on either side (as its lumped mass stands for half a cell of
+     * material), so a disk that rolls pivots on the node nearest to where
+     * it touches, not on one up to a spacing ahead, which would hold it
+     * back by that lever arm. Contact walls are axis-aligned.
+     */
+    static bool
+    on_node_stretch(const Tensor<1, dim> &to_node,
+                    const Tensor<1, dim> &outward,
+                    const Tensor<1, dim> &spacing)
+    {
+      const Tensor<1, dim> along = to_node - (to_node * outward) * outward;
+      for (unsigned int a = 0; a < dim; ++a)
+        if (std::abs(along[a]) > (0.5 + 1e-9) * spacing[a])
+          return false;
+      return true;
+    }
+
     MaterialPoints<dim> &points;
   };
 } // namespace mpm
