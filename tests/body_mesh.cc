@@ -13,6 +13,11 @@
 //   the outermost points half a Gauss offset inside each side: the
 //   lowest at y = 0.13 + (1 - 1/sqrt 3) / 2 times 0.28 / 6 (1e-12);
 // - both at once: the sum of the two;
+// - a box seeded on the grid's sub-cells across the disk, after it: the
+//   disk's points and those of the box's lattice that lie outside the disk
+//   (counted here from the lattice's geometry);
+// - axisymmetric, the box from the axis and the disk away from it: a
+//   cylinder and a torus, mass rho (pi R^2 H + 2 pi^2 R_c r^2) within 1e-5;
 // - a box of 7 x 7 cells of one point each, whose points all lie on grid
 //   nodes, across the two ranks' cells: 49 points, each seeded once, on
 //   the grid as 400 coarse cells and as 25 refined twice;
@@ -99,6 +104,51 @@ int main(int argc, char **argv) {
         both["points"][0] == disk["points"][0] + box["points"][0] &&
             std::abs(both["mass"][0] - disk["mass"][0] - box["mass"][0]) <
                 1e-12 * rho);
+  }
+
+  // A body on the grid's sub-cells (centres) across the disk, named after
+  // it: it keeps the points of its lattice outside the disk, which the
+  // disk's mesh fills.
+  {
+    auto disk = seeded("output-disk", box_away);
+    auto csv  = seeded("output-overlap",
+                      {"Bodies/box/Point placement=centres",
+                       "Bodies/box/Lower corner=0.2, 0.3",
+                       "Bodies/box/Upper corner=0.6, 0.7"});
+    const double a       = 0.025; // 2 x 2 points per cell of h = 0.05
+    unsigned int outside = 0;
+    for (unsigned int i = 0; i < 16; ++i)
+      for (unsigned int j = 0; j < 16; ++j)
+        {
+          const double x = 0.2 + a * (i + 0.5), y = 0.3 + a * (j + 0.5);
+          outside += (x - 0.3) * (x - 0.3) + (y - 0.5) * (y - 0.5) >= 0.04;
+        }
+    deallog << "overlap: " << static_cast<unsigned int>(csv["points"][0])
+            << " points, " << outside << " of the box's lattice outside the "
+            << "disk" << std::endl;
+    mpm_tests::check(
+      "a lattice box across the disk keeps its points outside the disk: "
+      "the disk's mass plus theirs (1e-12)",
+      csv["points"][0] == disk["points"][0] + outside &&
+        std::abs(csv["mass"][0] - disk["mass"][0] - rho * a * a * outside) <
+          1e-12 * rho);
+  }
+
+  // Axisymmetric (x the radius): the box from the axis is a cylinder, the
+  // disk a torus; each point is the ring its area sweeps.
+  {
+    auto csv = seeded("output-axisymmetric",
+                      {"Grid/Geometry=axisymmetric",
+                       "Boundary conditions/Slip boundaries=left",
+                       "Bodies/box/Lower corner=0, 0.13",
+                       "Bodies/box/Upper corner=0.33, 0.41",
+                       "Bodies/disk/Center=0.6, 0.7"});
+    const double cylinder = pi * 0.33 * 0.33 * 0.28;
+    const double torus    = 2. * pi * 0.6 * pi * 0.2 * 0.2;
+    mpm_tests::check("axisymmetric: a cylinder and a torus, mass rho (pi "
+                     "R^2 H + 2 pi^2 R_c r^2) within 1e-5",
+                     std::abs(csv["mass"][0] / (rho * (cylinder + torus)) -
+                              1.) < 1e-5);
   }
 
   // The same grid as 400 coarse cells and as 25 refined twice: on the
