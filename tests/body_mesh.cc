@@ -16,6 +16,9 @@
 // - a box seeded on the grid's sub-cells across the disk, after it: the
 //   disk's points and those of the box's lattice that lie outside the disk
 //   (counted here from the lattice's geometry);
+// - inflow: a disk of radius 0.1 released three times, each release
+//   building its mesh afresh: k times its 192 points and its mass after
+//   the k-th;
 // - axisymmetric, the box from the axis and the disk away from it: a
 //   cylinder and a torus, mass rho (pi R^2 H + 2 pi^2 R_c r^2) within 1e-5;
 // - a box of 7 x 7 cells of one point each, whose points all lie on grid
@@ -149,6 +152,37 @@ int main(int argc, char **argv) {
                      "R^2 H + 2 pi^2 R_c r^2) within 1e-5",
                      std::abs(csv["mass"][0] / (rho * (cylinder + torus)) -
                               1.) < 1e-5);
+  }
+
+  // Inflow: a disk of radius 0.1 released three times, 0.06 s apart, at
+  // 4 m/s downwards, so that each release finds its region empty; each
+  // release builds the disk's mesh afresh.
+  {
+    auto csv = seeded("output-inflow",
+                      {"Bodies/box/Lower corner=2, 2",
+                       "Bodies/box/Upper corner=3, 3",
+                       "Bodies/disk/Center=0.3, 0.85",
+                       "Bodies/disk/Radius=0.1",
+                       "Bodies/disk/Initial velocity=0; -4",
+                       "Bodies/disk/Releases=3",
+                       "Bodies/disk/Release interval=0.06",
+                       "Time stepping/End time=0.13",
+                       "Time stepping/Time step=0.001"});
+    const double one     = csv["mass"][0];
+    bool         counted = csv["points"][0] == 192.;
+    for (unsigned int r = 0; r < csv["time"].size(); ++r)
+      {
+        // A release at t enters the step that starts at t: the row at
+        // t still has the releases before it.
+        const double k =
+          std::max(1., std::ceil(csv["time"][r] / 0.06 - 1e-9));
+        counted        = counted && csv["points"][r] == k * 192. &&
+                  std::abs(csv["mass"][r] - k * one) < 1e-12 * rho;
+      }
+    mpm_tests::check("inflow: after the k-th release of the disk, k times "
+                     "its 192 points and its mass (1e-12), three in all",
+                     counted && csv["points"].back() == 3. * 192. &&
+                       std::abs(one / (rho * pi * 0.01) - 1.) < 1e-4);
   }
 
   // The same grid as 400 coarse cells and as 25 refined twice: on the
