@@ -70,8 +70,7 @@ namespace mpm
                            "0).");
         if (!bodies[b].is_inflow())
           continue;
-        bool                unused = false;
-        const std::uint64_t n = count_candidates(bodies, {b}, nullptr, unused);
+        const std::uint64_t n = count_candidates(bodies, {b});
         if (Utilities::MPI::sum(n, grid.get_communicator()) == 0)
           throw InputError("Bodies/" + bodies[b].name() +
                            ": the region of this inflow holds no point "
@@ -95,9 +94,18 @@ namespace mpm
     auto &handler = points.handler();
     // Bodies seeded together at the start may share cells; a later release
     // goes into empty ones.
-    bool                occupied = false;
-    const std::uint64_t n_local  = count_candidates(
-      bodies, which, time > 0. ? &handler : nullptr, occupied);
+    // The candidates are gathered once: a body on its own mesh would
+    // otherwise be meshed twice, to count its points and to insert them.
+    bool                   occupied = false;
+    std::vector<Candidate> candidates;
+    for_each_candidate(bodies,
+                       which,
+                       time > 0. ? &handler : nullptr,
+                       occupied,
+                       [&candidates](const Candidate &c) {
+                         candidates.push_back(c);
+                       });
+    const std::uint64_t n_local = candidates.size();
 
     const MPI_Comm comm = grid.get_communicator();
     if (Utilities::MPI::logical_or(occupied, comm))
@@ -157,8 +165,8 @@ namespace mpm
         c.cell,
         ArrayView<const double>(properties.data(), properties.size()));
     };
-    bool unused = false;
-    for_each_candidate(bodies, which, nullptr, unused, insert);
+    for (const Candidate &c : candidates)
+      insert(c);
     handler.update_cached_numbers();
   }
 
@@ -167,13 +175,12 @@ namespace mpm
   template <int dim>
   std::uint64_t
   PointSeeder<dim>::count_candidates(
-    const std::vector<Body<dim>> &          bodies,
-    const std::vector<unsigned int> &       which,
-    const Particles::ParticleHandler<dim> * present,
-    bool &                                  occupied) const
+    const std::vector<Body<dim>> &   bodies,
+    const std::vector<unsigned int> &which) const
   {
-    std::uint64_t n = 0;
-    for_each_candidate(bodies, which, present, occupied,
+    std::uint64_t n      = 0;
+    bool          unused = false;
+    for_each_candidate(bodies, which, nullptr, unused,
                        [&n](const Candidate &) { ++n; });
     return n;
   }

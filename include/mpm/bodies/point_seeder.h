@@ -144,12 +144,10 @@ namespace mpm
                     const unsigned int               b,
                     const Point<dim> &               x);
 
-    /** How many points for_each_candidate() visits. */
+    /** How many points the bodies `which` have in the locally owned cells. */
     std::uint64_t
-    count_candidates(const std::vector<Body<dim>> &          bodies,
-                     const std::vector<unsigned int> &       which,
-                     const Particles::ParticleHandler<dim> * present,
-                     bool &                                  occupied) const;
+    count_candidates(const std::vector<Body<dim>> &    bodies,
+                     const std::vector<unsigned int> &which) const;
 
     /** Seed the bodies `which` (indices into `bodies`) at `time`. */
     void
