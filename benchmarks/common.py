@@ -62,7 +62,12 @@ def mpm_executable():
 
 
 class RunFailed(Exception):
-    """mpm stopped with an error; the message is its last words."""
+    """mpm stopped with an error; the message is its last words, stdout
+    what it printed."""
+
+    def __init__(self, message, stdout=""):
+        super().__init__(message)
+        self.stdout = stdout
 
 
 def run_mpm(prm, settings, directory, ranks=1, restart=False):
@@ -85,7 +90,7 @@ def run_mpm(prm, settings, directory, ranks=1, restart=False):
     if result.returncode != 0:
         raise RunFailed(result.stderr.strip().splitlines()[-1]
                         if result.stderr.strip() else "exit code %d"
-                        % result.returncode)
+                        % result.returncode, result.stdout)
     return wall, result.stdout, read_csv(os.path.join(directory,
                                                       "time_series.csv"))
 
@@ -261,6 +266,21 @@ def surface_profile(points, h):
         k = int(x // h)
         columns[k] = max(columns.get(k, 0.0), y + h / 4)
     return [((k + 0.5) * h, columns[k]) for k in sorted(columns)]
+
+
+def profile_crossing(profile, depth):
+    """Where the surface, walking out from the wall, first falls below
+    `depth`: interpolated between the column centres, so that the measure
+    does not change with the columns' width."""
+    previous = None
+    for x, height in profile:
+        if height < depth:
+            if previous is None:
+                return x
+            x0, h0 = previous
+            return x0 + (x - x0) * (h0 - depth) / (h0 - height)
+        previous = (x, height)
+    return previous[0]
 
 
 def profile_toe(profile, h):
