@@ -70,11 +70,35 @@ class RunFailed(Exception):
         self.stdout = stdout
 
 
+# The bases of the runs of this process, for the SUMMARY line.
+BASES_USED = set()
+
+
+def basis_of(prm, settings):
+    """The basis a run uses: the meshfree Method (GMM-MLS, GMM-LME), or
+    MPM's Grid/Shape functions, each from the settings, else the prm
+    file, else the default."""
+    with open(prm) as f:
+        text = f.read()
+
+    def entry(path, name, default):
+        if path in settings:
+            return str(settings[path])
+        found = re.search(r"^\s*set\s+%s\s*=\s*([^#\n]*?)\s*(#.*)?$" % name,
+                          text, re.MULTILINE)
+        return found.group(1) if found else default
+
+    method = entry("Method", "Method", "MPM")
+    return method if method != "MPM" else entry(
+        "Grid/Shape functions", "Shape functions", "linear")
+
+
 def run_mpm(prm, settings, directory, ranks=1, restart=False):
     """Run one scene; return (wall seconds, stdout, time series columns).
     With restart, the run continues from the checkpoint in directory.
 
     The wall time is that of the whole process, measured here."""
+    BASES_USED.add(basis_of(prm, settings))
     command = [mpm_executable()] + (["--restart"] if restart else [])
     for key, value in settings.items():
         command += ["--set", "%s=%s" % (key, value)]
@@ -160,6 +184,10 @@ def fmt(value):
 
 
 def summary(**pairs):
+    """The SUMMARY line. It says which bases the runs used (joined by +)
+    unless the benchmark says so itself."""
+    if "shape_functions" not in pairs and BASES_USED:
+        pairs = dict(shape_functions="+".join(sorted(BASES_USED)), **pairs)
     print("SUMMARY " + " ".join("%s=%s" % (k, fmt(v))
                                 for k, v in pairs.items()))
 
