@@ -183,11 +183,16 @@ def fmt(value):
     return str(value)
 
 
+def bases_text(bases):
+    """Bases for a SUMMARY value: sorted, joined by +, with no spaces."""
+    return "+".join(sorted(b.replace(" ", "_") for b in bases))
+
+
 def summary(**pairs):
     """The SUMMARY line. It says which bases the runs used (joined by +)
     unless the benchmark says so itself."""
     if "shape_functions" not in pairs and BASES_USED:
-        pairs = dict(shape_functions="+".join(sorted(BASES_USED)), **pairs)
+        pairs = dict(shape_functions=bases_text(BASES_USED), **pairs)
     print("SUMMARY " + " ".join("%s=%s" % (k, fmt(v))
                                 for k, v in pairs.items()))
 
