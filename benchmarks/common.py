@@ -197,6 +197,22 @@ def summary(**pairs):
                                 for k, v in pairs.items()))
 
 
+def newton_counts(stdout):
+    """Newton's work in a Newmark run's screen output: step attempts (the
+    "time step" lines, cut steps counted again), out-of-balance
+    evaluations (iteration 0 included), corrections per attempt, and cut
+    steps."""
+    lines = stdout.splitlines()
+    attempts = sum(1 for l in lines if l.lstrip().startswith("time step"))
+    evaluations = sum(1 for l in lines if "out-of-balance ratio" in l)
+    return {"step_attempts": attempts,
+            "newton_evaluations": evaluations,
+            "corrections_per_attempt":
+                (evaluations - attempts) / attempts if attempts else
+                float("nan"),
+            "cut_steps": sum(1 for l in lines if "Cutting" in l)}
+
+
 def timer_sections(stdout):
     """Wall seconds per TimerOutput section (max over ranks), summed over
     the tables in stdout (a run continued from checkpoints prints one per
