@@ -276,6 +276,7 @@ test(const GridShapeFunctions kind)
       returned_momentum +=
         particle->get_properties()[Layout::mass] *
         transfer.interpolate(support,
+                             0,
                              GridNodes<dim>::NodalLayout::velocity);
     });
     returned_momentum = Utilities::MPI::sum(returned_momentum, comm);

@@ -110,7 +110,7 @@ namespace
         run.transfer.compute_nodal_velocity(false);
         double         error = 0.;
         Tensor<1, dim> grid_momentum;
-        for (const unsigned int node : run.nodes.nodes_to_solve())
+        for (const unsigned int node : run.nodes.slots_to_solve())
           {
             const double *    v = run.nodes.values_of(node);
             const Point<dim> &x = run.grid.node_position(node);
@@ -193,7 +193,7 @@ namespace
     run.transfer.compute_nodal_velocity(false);
     run.transfer.compute_nodal_acceleration(1e-4);
     double floor_speed = 0., wall_normal_speed = 0., wall_speed_along = 0.;
-    for (const unsigned int node : run.nodes.nodes_to_solve())
+    for (const unsigned int node : run.nodes.slots_to_solve())
       {
         const double *    v = run.nodes.values_of(node) + NodalLayout::velocity;
         const Point<dim> &x = run.grid.node_position(node);
@@ -250,7 +250,7 @@ namespace
       run.transfer.compute_nodal_velocity(false);
       run.transfer.compute_nodal_acceleration(1e-4);
       Tensor<1, dim> grid_force;
-      for (const unsigned int node : run.nodes.nodes_to_solve())
+      for (const unsigned int node : run.nodes.slots_to_solve())
         if (node < run.grid.node_partitioner()->locally_owned_size())
           for (unsigned int d = 0; d < dim; ++d)
             grid_force[d] += run.nodes.values_of(node)[NodalLayout::mass] *

@@ -2,15 +2,41 @@
 
 #include <mpm/assembly/grid_nodes.h>
 
+#include <deal.II/base/mpi.h>
+
 #include <algorithm>
+#include <map>
 
 namespace mpm
 {
+  namespace
+  {
+    /** One slot's values on the wire, with the global index of its node. */
+    template <unsigned int n_components>
+    struct SlotRecord
+    {
+      types::global_dof_index node;
+      unsigned int            field;
+      double                  values[n_components];
+
+      template <class Archive>
+      void
+      serialize(Archive &archive, const unsigned int)
+      {
+        archive &node &field &values;
+      }
+    };
+  } // namespace
+
+
+
   template <int dim>
-  GridNodes<dim>::GridNodes(const Grid<dim> &grid)
+  GridNodes<dim>::GridNodes(const Grid<dim> &grid, const unsigned int n_fields)
     : grid(grid)
+    , n_field_count(n_fields)
     , system_element(FE_Q<dim>(1), NodalLayout::n_components)
   {
+    AssertThrow(n_fields >= 1, ExcInternalError());
     grid_changed = grid.changed.connect([this]() { setup(); });
   }
 
@@ -38,11 +64,22 @@ namespace mpm
         ghost_values.push_back(n * g + c);
     ghosts.add_indices(ghost_values.begin(), ghost_values.end());
     values.reinit(owned, ghosts, grid.get_communicator());
+    combined_values.reinit(0);
     system_dof_handler.reset();
 
-    active_flag.assign(grid.n_nodes(), false);
+    n_grid_nodes = grid.n_nodes();
+    active_flag.assign(n_grid_nodes, false);
     active_nodes.clear();
-    solve_nodes.clear();
+    solve_slots.clear();
+    extra_slot_of.assign((n_field_count - 1) * n_grid_nodes, no_slot);
+    extra_nodes.clear();
+    extra_fields.clear();
+    extra_values.clear();
+    ghost_owner.clear();
+    unsigned int ghost = nodes.locally_owned_size();
+    ghost_owner.resize(ghost);
+    for (const auto &[rank, count] : nodes.ghost_targets())
+      ghost_owner.insert(ghost_owner.end(), count, rank);
 
     imported_nodes.clear();
     for (const auto &range : grid.node_partitioner()->import_indices())
@@ -85,7 +122,41 @@ namespace mpm
         for (const unsigned int node : active_nodes)
           active_flag[node] = false;
         active_nodes.clear();
+        // The other fields' slots are made anew by each full projection.
+        for (unsigned int s = 0; s < extra_nodes.size(); ++s)
+          extra_slot_of[(extra_fields[s] - 1) * n_grid_nodes + extra_nodes[s]] =
+            no_slot;
+        extra_nodes.clear();
+        extra_fields.clear();
+        extra_values.clear();
       }
+    else
+      {
+        // As for field 0: a ghost slot starts empty, so that what it sends
+        // its owner is this rank's part alone.
+        const unsigned int n_owned =
+          grid.node_partitioner()->locally_owned_size();
+        for (unsigned int s = 0; s < extra_nodes.size(); ++s)
+          {
+            double *v = extra_values.data() + s * NodalLayout::n_components;
+            if (extra_nodes[s] >= n_owned)
+              std::fill_n(v, NodalLayout::n_components, 0.);
+            else
+              std::fill_n(v + first_component, n_components, 0.);
+          }
+      }
+  }
+
+
+
+  template <int dim>
+  unsigned int
+  GridNodes<dim>::make_slot(const unsigned int node, const unsigned int field)
+  {
+    extra_nodes.push_back(node);
+    extra_fields.push_back(field);
+    extra_values.resize(extra_values.size() + NodalLayout::n_components, 0.);
+    return n_grid_nodes + extra_nodes.size() - 1;
   }
 
 
@@ -96,14 +167,101 @@ namespace mpm
   {
     values.compress(VectorOperation::add);
     values.update_ghost_values();
+    if (n_field_count > 1 &&
+        Utilities::MPI::n_mpi_processes(grid.get_communicator()) > 1)
+      exchange_extra_fields();
 
-    // A partial projection fills the same nodes as the full one before it.
+    // A partial projection fills the same slots as the full one before it.
     if (!full_projection)
       return;
-    solve_nodes = active_nodes;
+    solve_slots = active_nodes;
     for (const unsigned int node : imported_nodes)
       if (!active_flag[node] && values_of(node)[NodalLayout::mass] > 0.)
-        solve_nodes.push_back(node);
+        solve_slots.push_back(node);
+    for (unsigned int s = n_grid_nodes; s < n_slots(); ++s)
+      solve_slots.push_back(s);
+  }
+
+
+
+  template <int dim>
+  void
+  GridNodes<dim>::exchange_extra_fields()
+  {
+    using Record = SlotRecord<NodalLayout::n_components>;
+    constexpr unsigned int             n = NodalLayout::n_components;
+    const Utilities::MPI::Partitioner &partitioner = *grid.node_partitioner();
+    const MPI_Comm                     comm        = grid.get_communicator();
+    const unsigned int n_owned = partitioner.locally_owned_size();
+    const auto         record  = [&](const unsigned int s) {
+      Record r;
+      r.node  = partitioner.local_to_global(extra_nodes[s]);
+      r.field = extra_fields[s];
+      std::copy_n(extra_values.data() + s * n, n, r.values);
+      return r;
+    };
+
+    // Ghost slots' parts to their owners, which add them.
+    std::map<unsigned int, std::vector<Record>> to_owners;
+    for (unsigned int s = 0; s < extra_nodes.size(); ++s)
+      if (extra_nodes[s] >= n_owned)
+        {
+          to_owners[ghost_owner[extra_nodes[s]]].push_back(record(s));
+          std::fill_n(extra_values.data() + s * n, n, 0.);
+        }
+    for (const auto &[rank, records] :
+         Utilities::MPI::some_to_some(comm, to_owners))
+      for (const Record &r : records)
+        {
+          const unsigned int s = claim(partitioner.global_to_local(r.node),
+                                       r.field);
+          double *v = values_of(s);
+          for (unsigned int c = 0; c < n; ++c)
+            v[c] += r.values[c];
+        }
+
+    // The totals back to every rank that has the node as a ghost.
+    std::vector<unsigned int> imports;
+    for (const auto &[begin, end] : partitioner.import_indices())
+      for (unsigned int node = begin; node < end; ++node)
+        imports.push_back(node);
+    std::map<unsigned int, std::vector<Record>> to_ghosts;
+    auto next = imports.begin();
+    for (const auto &[rank, count] : partitioner.import_targets())
+      for (unsigned int i = 0; i < count; ++i)
+        {
+          const unsigned int node = *next++;
+          for (unsigned int field = 1; field < n_field_count; ++field)
+            {
+              const unsigned int s = slot(node, field);
+              if (s != no_slot)
+                to_ghosts[rank].push_back(record(s - n_grid_nodes));
+            }
+        }
+    for (const auto &[rank, records] :
+         Utilities::MPI::some_to_some(comm, to_ghosts))
+      for (const Record &r : records)
+        std::copy_n(r.values,
+                    n,
+                    values_of(claim(partitioner.global_to_local(r.node),
+                                    r.field)));
+  }
+
+
+
+  template <int dim>
+  std::vector<unsigned int>
+  GridNodes<dim>::shared_nodes() const
+  {
+    std::vector<unsigned int> shared;
+    if (n_field_count == 1)
+      return shared;
+    std::vector<unsigned int> n_with_mass(n_grid_nodes, 0);
+    for (const unsigned int s : solve_slots)
+      if (values_of(s)[NodalLayout::mass] > 0. &&
+          ++n_with_mass[node_of_slot(s)] == 2)
+        shared.push_back(node_of_slot(s));
+    return shared;
   }
 
 
@@ -142,7 +300,16 @@ namespace mpm
   const LinearAlgebra::distributed::Vector<double> &
   GridNodes<dim>::output_vector() const
   {
+    constexpr unsigned int n = NodalLayout::n_components;
     values.update_ghost_values();
+    LinearAlgebra::distributed::Vector<double> *out = &values;
+    if (n_field_count > 1)
+      {
+        combined_values.reinit(values, true);
+        out = &combined_values;
+        for (unsigned int node = 0; node < n_grid_nodes; ++node)
+          combine_fields(node, combined_values.get_values() + n * node);
+      }
     // No point reaches a hanging vertex, so the projection leaves it
     // empty; no step reads what is written here.
     for (const auto &cell : grid.get_triangulation().active_cell_iterators())
@@ -152,21 +319,42 @@ namespace mpm
           if (geometry.n_hanging == 0)
             continue;
           for (const auto &entry : grid.hanging_vertices(geometry))
-            std::fill_n(values.get_values() + NodalLayout::n_components *
-                                                geometry.nodes[entry.vertex],
-                        NodalLayout::n_components,
+            std::fill_n(out->get_values() + n * geometry.nodes[entry.vertex],
+                        n,
                         0.);
           for (const auto &entry : grid.hanging_vertices(geometry))
             {
-              double *hanging = values.get_values() +
-                                NodalLayout::n_components *
-                                  geometry.nodes[entry.vertex];
-              const double *master = values_of(entry.master);
-              for (unsigned int c = 0; c < NodalLayout::n_components; ++c)
+              double *hanging =
+                out->get_values() + n * geometry.nodes[entry.vertex];
+              const double *master = out->get_values() + n * entry.master;
+              for (unsigned int c = 0; c < n; ++c)
                 hanging[c] += entry.weight * master[c];
             }
         }
-    return values;
+    return *out;
+  }
+
+
+
+  template <int dim>
+  void
+  GridNodes<dim>::combine_fields(const unsigned int node, double *out) const
+  {
+    double mass = 0.;
+    std::fill_n(out, NodalLayout::n_components, 0.);
+    for (unsigned int field = 0; field < n_field_count; ++field)
+      {
+        const unsigned int s = slot(node, field);
+        if (s == no_slot)
+          continue;
+        const double *v = values_of(s);
+        mass += v[NodalLayout::mass];
+        for (unsigned int c = 1; c < NodalLayout::n_components; ++c)
+          out[c] += v[NodalLayout::mass] * v[c];
+      }
+    out[NodalLayout::mass] = mass;
+    for (unsigned int c = 1; c < NodalLayout::n_components; ++c)
+      out[c] = mass > 0. ? out[c] / mass : 0.;
   }
 
 

@@ -10,47 +10,19 @@ namespace mpm
     const GridBasis<dim> &                          basis,
     GridNodes<dim> &                                nodes,
     const std::vector<const NodalCondition<dim> *> &conditions,
-    const Tensor<1, dim> &                          gravity)
+    const Tensor<1, dim> &                          gravity,
+    const std::vector<unsigned int> &               field_of_body)
     : points(points)
     , basis(basis)
     , nodes(nodes)
     , conditions(conditions)
     , gravity(gravity)
-  {}
-
-
-
-  template <int dim>
-  void
-  GridTransfer<dim>::add_force(const ArrayView<const double> &p,
-                               const Support<dim> &           support,
-                               const Point<dim> &             x,
-                               double *                       forces,
-                               const unsigned int             stride)
+    , field_of_body(field_of_body)
   {
-    const double m = p[Layout::mass];
-    // The supports are evaluated at the current positions: dF = I.
-    PointAssembly<dim>::internal_force(
-      support,
-      nullptr,
-      Layout::current_volume(p),
-      Layout::get_stress(p),
-      nullptr,
-      nullptr,
-      scratch,
-      points.get_grid().is_axisymmetric() ? x[0] : 0.);
-    const std::vector<double> &internal = scratch.force;
-    Tensor<1, dim>             external = m * gravity;
-    if (points.has_point_loads())
-      for (unsigned int d = 0; d < dim; ++d)
-        external[d] += p[points.point_load_index() + d];
-    external *= load_factor;
-    for (unsigned int i = 0; i < support.n_nodes; ++i)
-      {
-        double *f = forces + stride * support.nodes[i];
-        for (unsigned int d = 0; d < dim; ++d)
-          f[d] += support.N[i] * external[d] - internal[i * dim + d];
-      }
+    for (const unsigned int field : field_of_body)
+      AssertThrow(field < nodes.n_fields(), ExcInternalError());
+    AssertThrow(nodes.n_fields() == 1 || !field_of_body.empty(),
+                ExcInternalError());
   }
 
 
@@ -63,26 +35,27 @@ namespace mpm
     if (nodal_density)
       nodal_density->begin_projection();
     for_each_point([&](const auto &particle, const Support<dim> &support) {
-      const ArrayView<const double> p = particle->get_properties();
-      const double                  m = p[Layout::mass];
+      const ArrayView<const double> p     = particle->get_properties();
+      const double                  m     = p[Layout::mass];
+      const unsigned int            field = field_of(p);
       if (nodal_density)
         nodal_density->add_point(support, m, particle->get_location());
       for (unsigned int i = 0; i < support.n_nodes; ++i)
         {
-          const unsigned int node = support.nodes[i];
-          double *           v    = nodes.values_of(node);
-          const double       Nm   = support.N[i] * m;
+          double *     v  = nodes.values_of(nodes.claim(support.nodes[i], field));
+          const double Nm = support.N[i] * m;
           v[NodalLayout::mass] += Nm;
           for (unsigned int d = 0; d < dim; ++d)
             v[NodalLayout::velocity + d] += Nm * p[Layout::velocity + d];
-          nodes.mark_active(node);
         }
       if (with_force)
         add_force(p,
                   support,
                   particle->get_location(),
-                  nodes.values_of(0) + NodalLayout::force,
-                  NodalLayout::n_components);
+                  [&](const unsigned int i) {
+                    return nodes.values_of(nodes.slot(support.nodes[i], field)) +
+                           NodalLayout::force;
+                  });
     });
     nodes.finish_projection();
     if (nodal_density)
@@ -95,11 +68,11 @@ namespace mpm
   void
   GridTransfer<dim>::compute_nodal_velocity(const bool constrain)
   {
-    for (const unsigned int node : nodes.nodes_to_solve())
+    for (const unsigned int slot : nodes.slots_to_solve())
       {
         // A point exactly on a cell face gives the opposite nodes N = 0 and
         // so zero mass and momentum; their velocity is zero, not 0/0.
-        double *     v = nodes.values_of(node);
+        double *     v = nodes.values_of(slot);
         const double m = v[NodalLayout::mass];
         for (unsigned int d = 0; d < dim; ++d)
           v[NodalLayout::velocity + d] =
@@ -113,11 +86,11 @@ namespace mpm
                                       [](const unsigned int, const double *) {
                                       });
     if (constrain)
-      for (const unsigned int node : nodes.nodes_to_solve())
+      for (const unsigned int slot : nodes.slots_to_solve())
         for (const NodalCondition<dim> *condition : conditions)
-          if (condition->acts_on(node))
-            condition->constrain_velocity(node,
-                                          nodes.values_of(node) +
+          if (condition->acts_on(nodes.node_of_slot(slot)))
+            condition->constrain_velocity(nodes.node_of_slot(slot),
+                                          nodes.values_of(slot) +
                                             NodalLayout::velocity);
   }
 
@@ -127,18 +100,20 @@ namespace mpm
   void
   GridTransfer<dim>::compute_nodal_acceleration(const double dt)
   {
-    const std::vector<unsigned int> &solve_nodes = nodes.nodes_to_solve();
+    const std::vector<unsigned int> &solve_slots = nodes.slots_to_solve();
     if (blended_mass)
-      size_values_aside(solve_nodes);
-    for (const unsigned int node : solve_nodes)
+      size_values_aside();
+    for (const unsigned int slot : solve_slots)
       {
-        double *     v = nodes.values_of(node);
+        double *     v = nodes.values_of(slot);
         const double m = v[NodalLayout::mass];
         for (unsigned int d = 0; d < dim; ++d)
           v[NodalLayout::force + d] =
             m > 0. ? v[NodalLayout::force + d] / m : 0.;
-        apply_explicit_conditions(node, dt);
       }
+    couple_fields(dt);
+    for (const unsigned int slot : solve_slots)
+      apply_explicit_conditions(slot, dt);
     if (blended_mass)
       // The end velocities follow the accelerations' changes.
       correct_towards_consistent_mass(
@@ -146,8 +121,8 @@ namespace mpm
         true,
         0.5,
         true,
-        [&](const unsigned int node, const double *change) {
-          double *velocity = nodes.values_of(node) + NodalLayout::velocity;
+        [&](const unsigned int slot, const double *change) {
+          double *velocity = nodes.values_of(slot) + NodalLayout::velocity;
           for (unsigned int d = 0; d < dim; ++d)
             velocity[d] += dt * change[d];
         });
@@ -157,10 +132,21 @@ namespace mpm
 
   template <int dim>
   void
-  GridTransfer<dim>::apply_explicit_conditions(const unsigned int node,
+  GridTransfer<dim>::couple_fields(const double)
+  {
+    // Fields of bodies that do not interact are left alone: each moves as
+    // if the others were not there.
+  }
+
+
+
+  template <int dim>
+  void
+  GridTransfer<dim>::apply_explicit_conditions(const unsigned int slot,
                                                const double       dt)
   {
-    double *     v        = nodes.values_of(node);
+    const unsigned int node   = nodes.node_of_slot(slot);
+    double *           v      = nodes.values_of(slot);
     const double m        = v[NodalLayout::mass];
     double *     a        = v + NodalLayout::force;
     double *     velocity = v + NodalLayout::velocity;
@@ -171,7 +157,7 @@ namespace mpm
     for (const NodalCondition<dim> *condition : conditions)
       if (condition->acts_on(node))
         {
-          condition->constrain_explicit(node, m, velocity, a, dt, time);
+          condition->constrain_explicit(node, slot, m, velocity, a, dt, time);
           constrained = true;
         }
     if (blended_mass)
@@ -180,7 +166,7 @@ namespace mpm
       // unconstrained velocity, whose stop is no acceleration of the
       // material.
       for (unsigned int d = 0; d < dim; ++d)
-        values_aside[node * dim + d] = a[d];
+        values_aside[slot * dim + d] = a[d];
     for (unsigned int d = 0; d < dim; ++d)
       {
         // a takes the conditions' reaction impulse (velocity - start)
@@ -206,46 +192,51 @@ namespace mpm
   {
     // M_C w is summed into the component, since a projection clears the
     // ghost nodes, so what the component held is kept aside first.
-    const std::vector<unsigned int> &solve_nodes = nodes.nodes_to_solve();
-    size_values_aside(solve_nodes);
-    for (const unsigned int node : solve_nodes)
+    const std::vector<unsigned int> &solve_slots = nodes.slots_to_solve();
+    size_values_aside();
+    for (const unsigned int slot : solve_slots)
       for (unsigned int d = 0; d < dim; ++d)
-        values_kept[node * dim + d] = nodes.values_of(node)[component + d];
+        values_kept[slot * dim + d] = nodes.values_of(slot)[component + d];
     const std::vector<double> &w = field_aside ? values_aside : values_kept;
 
     nodes.begin_projection(component, dim);
     for_each_point([&](const auto &particle, const Support<dim> &support) {
-      const double m       = particle->get_properties()[Layout::mass];
-      double       mw[dim] = {};
+      const ArrayView<const double> p       = particle->get_properties();
+      const double                  m       = p[Layout::mass];
+      const unsigned int            field   = field_of(p);
+      double                        mw[dim] = {};
       for (unsigned int i = 0; i < support.n_nodes; ++i)
         for (unsigned int d = 0; d < dim; ++d)
-          mw[d] += m * support.N[i] * w[support.nodes[i] * dim + d];
+          mw[d] += m * support.N[i] *
+                   w[nodes.slot(support.nodes[i], field) * dim + d];
       for (unsigned int i = 0; i < support.n_nodes; ++i)
         {
-          double *w = nodes.values_of(support.nodes[i]) + component;
+          double *w =
+            nodes.values_of(nodes.slot(support.nodes[i], field)) + component;
           for (unsigned int d = 0; d < dim; ++d)
             w[d] += support.N[i] * mw[d];
         }
     });
     nodes.finish_projection();
 
-    for (const unsigned int node : solve_nodes)
+    for (const unsigned int slot : solve_slots)
       {
-        double *     values      = nodes.values_of(node) + component;
-        const double m           = nodes.values_of(node)[NodalLayout::mass];
-        double       change[dim] = {};
+        const unsigned int node        = nodes.node_of_slot(slot);
+        double *           values      = nodes.values_of(slot) + component;
+        const double       m           = nodes.values_of(slot)[NodalLayout::mass];
+        double             change[dim] = {};
         if (m > 0.)
           {
             for (unsigned int d = 0; d < dim; ++d)
-              change[d] = factor * (w[node * dim + d] - values[d] / m);
+              change[d] = factor * (w[slot * dim + d] - values[d] / m);
             if (constrained)
               for (const NodalCondition<dim> *condition : conditions)
                 if (condition->acts_on(node))
-                  condition->constrain_change(node, change);
+                  condition->constrain_change(node, slot, change);
           }
         for (unsigned int d = 0; d < dim; ++d)
-          values[d] = values_kept[node * dim + d] + change[d];
-        after_change(node, change);
+          values[d] = values_kept[slot * dim + d] + change[d];
+        after_change(slot, change);
       }
   }
 
@@ -253,16 +244,13 @@ namespace mpm
 
   template <int dim>
   void
-  GridTransfer<dim>::size_values_aside(
-    const std::vector<unsigned int> &solve_nodes)
+  GridTransfer<dim>::size_values_aside()
   {
-    unsigned int n_nodes = 0;
-    for (const unsigned int node : solve_nodes)
-      n_nodes = std::max(n_nodes, node + 1);
-    if (values_aside.size() < n_nodes * dim)
+    const std::size_t n_values = std::size_t(nodes.n_slots()) * dim;
+    if (values_aside.size() < n_values)
       {
-        values_aside.resize(n_nodes * dim);
-        values_kept.resize(n_nodes * dim);
+        values_aside.resize(n_values);
+        values_kept.resize(n_values);
       }
   }
 
@@ -282,11 +270,12 @@ namespace mpm
   void
   GridTransfer<dim>::compute_initial_acceleration()
   {
-    for (const unsigned int node : nodes.nodes_to_solve())
+    for (const unsigned int slot : nodes.slots_to_solve())
       {
-        double *     v = nodes.values_of(node);
-        const double m = v[NodalLayout::mass];
-        double *     a = v + NodalLayout::force;
+        const unsigned int node = nodes.node_of_slot(slot);
+        double *           v    = nodes.values_of(slot);
+        const double       m    = v[NodalLayout::mass];
+        double *           a    = v + NodalLayout::force;
         double velocity[dim];
         for (unsigned int d = 0; d < dim; ++d)
           {

@@ -40,7 +40,7 @@ namespace mpm
   template <int dim>
   FrictionWalls<dim>::FrictionWalls(ParameterHandler &prm,
                                     const Grid<dim> & grid)
-    : grid(grid)
+    : RigidContact<dim>(grid)
   {
     const std::string entry = "Boundary conditions/Friction boundaries";
     prm.enter_subsection("Boundary conditions");
@@ -167,7 +167,7 @@ namespace mpm
       }
     for (unsigned int k = 0; k < grid.n_nodes(); ++k)
       first_contact[k + 1] += first_contact[k];
-    reactions.assign(contacts.size(), Reaction());
+    this->clear_reactions();
   }
 
 
@@ -233,6 +233,7 @@ namespace mpm
   template <int dim>
   void
   FrictionWalls<dim>::constrain_explicit(const unsigned int node,
+                                         const unsigned int slot,
                                          const double       mass,
                                          double *           velocity,
                                          double *           acceleration,
@@ -248,42 +249,23 @@ namespace mpm
         Tensor<1, dim> trial;
         for (unsigned int d = 0; d < dim; ++d)
           trial[d] = velocity[d] + dt * acceleration[d];
-        const CoulombContact<dim> law(trial,
-                                      contacts[c].outward,
-                                      walls[contacts[c].wall].friction,
-                                      mass,
-                                      dt);
-        reactions[c].solved = true;
-        reactions[c].law    = law;
+        const CoulombContact<dim> &law =
+          this->act(node,
+                    slot,
+                    c,
+                    trial,
+                    contacts[c].outward,
+                    walls[contacts[c].wall].friction,
+                    mass,
+                    dt);
         if (!law.active)
           continue;
-        reactions[c].normal     = law.normal_force;
-        reactions[c].tangential = law.tangential_force;
         for (unsigned int d = 0; d < dim; ++d)
           {
             velocity[d]     = law.end[d];
             acceleration[d] = 0.;
           }
       }
-  }
-
-
-
-  template <int dim>
-  void
-  FrictionWalls<dim>::constrain_change(const unsigned int node,
-                                       double *           change) const
-  {
-    for (unsigned int c = first_contact[node]; c < first_contact[node + 1];
-         ++c)
-      if (reactions[c].solved)
-        {
-          const CoulombContact<dim> law =
-            reactions[c].law.follow_change(change);
-          reactions[c].law        = law;
-          reactions[c].normal     = law.normal_force;
-          reactions[c].tangential = law.tangential_force;
-        }
   }
 
 
@@ -328,14 +310,13 @@ namespace mpm
   std::vector<Tensor<1, dim>>
   FrictionWalls<dim>::local_wall_forces() const
   {
-    const unsigned int n_owned =
-      grid.node_partitioner()->locally_owned_size();
     std::vector<Tensor<1, dim>> totals(walls.size());
-    for (unsigned int node = 0; node < n_owned; ++node)
-      for (unsigned int c = first_contact[node]; c < first_contact[node + 1];
-           ++c)
-        totals[contacts[c].wall] +=
-          reactions[c].normal * contacts[c].outward + reactions[c].tangential;
+    for (const auto *reaction : this->owned_reactions_by_surface())
+      {
+        const Contact &contact = contacts[reaction->surface];
+        totals[contact.wall] +=
+          reaction->normal * contact.outward + reaction->tangential;
+      }
     return totals;
   }
 
@@ -382,6 +363,13 @@ namespace mpm
     const MPI_Comm     comm = grid.get_communicator();
     const unsigned int n_owned =
       grid.node_partitioner()->locally_owned_size();
+    // Per contact: the normal force and the tangential one, over fields.
+    std::vector<std::pair<double, Tensor<1, dim>>> at_contact(contacts.size());
+    for (const auto *reaction : this->owned_reactions_by_surface())
+      {
+        at_contact[reaction->surface].first += reaction->normal;
+        at_contact[reaction->surface].second += reaction->tangential;
+      }
     for (unsigned int w = 0; w < walls.size(); ++w)
       {
         // Rows of dim + 2 numbers: position, normal and tangential
@@ -394,11 +382,11 @@ namespace mpm
             if (contacts[c].wall == w)
               {
                 const Contact &          contact = contacts[c];
-                const Tensor<1, dim> &   T       = reactions[c].tangential;
+                const Tensor<1, dim> &   T       = at_contact[c].second;
                 std::array<double, dim + 2> row;
                 for (unsigned int d = 0; d < dim; ++d)
                   row[d] = contact.position[d];
-                row[dim]     = reactions[c].normal / contact.area;
+                row[dim]     = at_contact[c].first / contact.area;
                 row[dim + 1] = (dim == 2 ? T * tangent_of(contact.outward) :
                                            T.norm()) /
                                contact.area;

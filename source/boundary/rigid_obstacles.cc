@@ -51,7 +51,7 @@ namespace mpm
   RigidObstacles<dim>::RigidObstacles(ParameterHandler &              prm,
                                       const std::vector<std::string> &names,
                                       const Grid<dim> &               grid)
-    : grid(grid)
+    : RigidContact<dim>(grid)
   {
     prm.enter_subsection("Obstacles");
     for (const std::string &name : names)
@@ -137,8 +137,7 @@ namespace mpm
     // Where the obstacles stand before the first step (the first output).
     for (unsigned int k = 0; k < obstacles.size(); ++k)
       offsets[k] = obstacles[k].displacement_at(0.);
-    reactions.clear();
-    first_reaction.clear();
+    this->clear_reactions();
   }
 
 
@@ -201,8 +200,7 @@ namespace mpm
         offsets[k]    = obstacles[k].displacement_at(time + dt);
         velocities[k] = (offsets[k] - start) / dt;
       }
-    reactions.clear();
-    first_reaction.clear();
+    this->clear_reactions();
   }
 
 
@@ -231,6 +229,7 @@ namespace mpm
   template <int dim>
   void
   RigidObstacles<dim>::constrain_explicit(const unsigned int node,
+                                          const unsigned int slot,
                                           const double       mass,
                                           double *           velocity,
                                           double *           acceleration,
@@ -245,54 +244,23 @@ namespace mpm
           for (unsigned int d = 0; d < dim; ++d)
             relative[d] =
               velocity[d] + dt * acceleration[d] - velocities[k][d];
-          const CoulombContact<dim> law(relative,
-                                        -contact_normal(k, node, relative),
-                                        obstacles[k].friction,
-                                        mass,
-                                        dt);
-          Reaction reaction;
-          reaction.node     = node;
-          reaction.obstacle = k;
-          reaction.law      = law;
-          first_reaction.emplace(node, reactions.size());
+          const CoulombContact<dim> &law =
+            this->act(node,
+                      slot,
+                      k,
+                      relative,
+                      -contact_normal(k, node, relative),
+                      obstacles[k].friction,
+                      mass,
+                      dt);
           if (!law.active)
-            {
-              // Kept for the blended mass, whose change may press it in.
-              reactions.push_back(reaction);
-              continue;
-            }
-          reaction.normal     = law.normal_force;
-          reaction.tangential = law.tangential_force;
-          reaction.force      = law.force();
-          reactions.push_back(reaction);
+            continue;
           for (unsigned int d = 0; d < dim; ++d)
             {
               velocity[d]     = velocities[k][d] + law.end[d];
               acceleration[d] = 0.;
             }
         }
-  }
-
-
-
-  template <int dim>
-  void
-  RigidObstacles<dim>::constrain_change(const unsigned int node,
-                                        double *           change) const
-  {
-    const auto first = first_reaction.find(node);
-    if (first == first_reaction.end())
-      return;
-    for (unsigned int r = first->second;
-         r < reactions.size() && reactions[r].node == node;
-         ++r)
-      {
-        Reaction &reaction  = reactions[r];
-        reaction.law        = reaction.law.follow_change(change);
-        reaction.normal     = reaction.law.normal_force;
-        reaction.tangential = reaction.law.tangential_force;
-        reaction.force      = reaction.law.force();
-      }
   }
 
 
@@ -322,17 +290,14 @@ namespace mpm
     // Per obstacle: the force vector, the normal and tangential sums.
     const unsigned int  n_values = dim + 2;
     std::vector<double> values(obstacles.size() * n_values, 0.);
-    const unsigned int  n_owned =
-      grid.node_partitioner()->locally_owned_size();
-    for (const Reaction &reaction : reactions)
-      if (reaction.node < n_owned)
-        {
-          double *v = &values[reaction.obstacle * n_values];
-          for (unsigned int d = 0; d < dim; ++d)
-            v[d] += reaction.force[d];
-          v[dim] += reaction.normal;
-          v[dim + 1] += reaction.tangential.norm();
-        }
+    for (const auto *reaction : this->owned_reactions())
+      {
+        double *v = &values[reaction->surface * n_values];
+        for (unsigned int d = 0; d < dim; ++d)
+          v[d] += reaction->force[d];
+        v[dim] += reaction->normal;
+        v[dim + 1] += reaction->tangential.norm();
+      }
     Utilities::MPI::sum(values, grid.get_communicator(), values);
     return values;
   }
@@ -344,21 +309,18 @@ namespace mpm
   RigidObstacles<dim>::write_tractions(const std::string &directory,
                                        const unsigned int step) const
   {
-    const MPI_Comm     comm = grid.get_communicator();
-    const unsigned int n_owned =
-      grid.node_partitioner()->locally_owned_size();
+    const MPI_Comm comm = grid.get_communicator();
     for (unsigned int k = 0; k < obstacles.size(); ++k)
       {
         std::vector<std::array<double, dim + 2>> rows;
-        for (const Reaction &reaction : reactions)
-          if (reaction.obstacle == k && reaction.node < n_owned &&
-              reaction.normal > 0.)
+        for (const auto *reaction : this->owned_reactions())
+          if (reaction->surface == k && reaction->normal > 0.)
             {
               std::array<double, dim + 2> row;
               for (unsigned int d = 0; d < dim; ++d)
-                row[d] = grid.node_position(reaction.node)[d];
-              row[dim]     = reaction.normal;
-              row[dim + 1] = reaction.tangential.norm();
+                row[d] = grid.node_position(reaction->node)[d];
+              row[dim]     = reaction->normal;
+              row[dim + 1] = reaction->tangential.norm();
               rows.push_back(row);
             }
         write_gathered_csv(

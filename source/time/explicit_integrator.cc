@@ -149,12 +149,14 @@ namespace mpm
   {
     // FLIP, v_p + dt N a, blended with PIC, N (v + dt a): the PIC share
     // damps point velocities that the grid cannot represent.
-    const Tensor<1, dim> a = transfer.interpolate(support, NodalLayout::force);
-    const ArrayView<double> p = particle->get_properties();
+    const ArrayView<double> p     = particle->get_properties();
+    const unsigned int      field = transfer.field_of(p);
+    const Tensor<1, dim>    a =
+      transfer.interpolate(support, field, NodalLayout::force);
     if (pic_fraction > 0.)
       {
         const Tensor<1, dim> v =
-          transfer.interpolate(support, NodalLayout::velocity);
+          transfer.interpolate(support, field, NodalLayout::velocity);
         for (unsigned int d = 0; d < dim; ++d)
           p[Layout::velocity + d] =
             (1. - pic_fraction) * (p[Layout::velocity + d] + dt * a[d]) +
@@ -239,10 +241,11 @@ namespace mpm
     // In 3x3 form: in an axisymmetric scene L_tt = v_r / r, the hoop rate
     // ([W]'s d_tt); in plane strain L_zz = 0, and in plane stress the
     // point's law chooses it (PlaneStress) when the step is committed.
+    const unsigned int field = transfer.field_of(particle->get_properties());
     return Layout::embed(
-      transfer.velocity_gradient(support),
+      transfer.velocity_gradient(support, field),
       grid.is_axisymmetric() ?
-        transfer.interpolate(support, NodalLayout::velocity)[0] /
+        transfer.interpolate(support, field, NodalLayout::velocity)[0] /
           particle->get_location()[0] :
         0.);
   }
@@ -290,10 +293,10 @@ namespace mpm
                                 const double        dt,
                                 StepReport &        report)
   {
-    const Tensor<1, dim> v =
-      transfer.interpolate(support, NodalLayout::velocity);
     const ArrayView<const double> p = particle->get_properties();
-    const Point<dim>              x = particle->get_location();
+    const Tensor<1, dim>          v =
+      transfer.interpolate(support, transfer.field_of(p), NodalLayout::velocity);
+    const Point<dim> x = particle->get_location();
 
     double speed_square = 0.;
     double fraction     = 0.;

@@ -86,7 +86,9 @@ namespace mpm
     transfer.compute_initial_acceleration();
     transfer.for_each_point([&](auto &particle, const Support<dim> &support) {
       const Tensor<1, dim> a =
-        transfer.interpolate(support, GridNodes<dim>::NodalLayout::force);
+        transfer.interpolate(support,
+                             transfer.field_of(particle->get_properties()),
+                             GridNodes<dim>::NodalLayout::force);
       for (unsigned int d = 0; d < dim; ++d)
         particle->get_properties()[points.acceleration_index() + d] = a[d];
     });

@@ -16,22 +16,29 @@ namespace mpm
   using namespace dealii;
 
   /**
-   * The nodal values of the explicit scheme on the background grid: one
-   * vector, distributed with the grid, that holds per node the lumped mass,
-   * the velocity (momentum while it is being accumulated) and the force
-   * (acceleration after the nodal solve), interleaved so a node's values
-   * sit together in memory. Nodes are the Grid's node ids; the values of
-   * node i start at values_of(i).
+   * The nodal values of the explicit scheme on the background grid, in K
+   * velocity fields: one per contact group of bodies (K = 1: every body
+   * in one field, which makes bodies that meet stick together). A field at
+   * a node holds the lumped mass, the velocity (momentum while it is being
+   * accumulated) and the force (acceleration after the nodal solve),
+   * interleaved so that they sit together in memory.
    *
-   * Only nodes that carry material are touched: the set of active nodes is
-   * recorded while projecting and only those (plus the few nodes shared with
-   * other ranks) are cleared before the next projection. An empty region of
-   * the grid therefore costs nothing per step.
+   * One field at one node is a slot. Field 0 is stored for every node, in
+   * one vector distributed with the grid, and its slot is the node id; the
+   * other fields are stored only at the nodes where they have points near,
+   * in slots numbered from n_nodes() on, made by the projection that first
+   * touches them (claim()). A slot's values start at values_of(slot).
+   *
+   * Only slots that carry material are touched: the active slots are
+   * recorded while projecting and only those (plus the few nodes shared
+   * with other ranks) are cleared before the next projection. An empty
+   * region of the grid therefore costs nothing per step.
    */
   template <int dim>
   class GridNodes
   {
   public:
+    /** The values of one field at one node. */
     struct NodalLayout
     {
       static constexpr unsigned int mass         = 0;
@@ -40,64 +47,152 @@ namespace mpm
       static constexpr unsigned int n_components = 1 + 2 * dim;
     };
 
-    /** Connects to Grid::changed, which calls setup() again. */
-    explicit GridNodes(const Grid<dim> &grid);
+    static constexpr unsigned int no_slot = numbers::invalid_unsigned_int;
+
+    /**
+     * `n_fields` velocity fields per node. Connects to Grid::changed,
+     * which calls setup() again.
+     */
+    explicit GridNodes(const Grid<dim> &grid, const unsigned int n_fields = 1);
 
     /** Size the storage for the grid's nodes. */
     void
     setup();
 
-    /** The values of a node, NodalLayout::n_components of them. */
-    double *
-    values_of(const unsigned int node)
+    unsigned int
+    n_fields() const
     {
-      return values.get_values() + node * NodalLayout::n_components;
+      return n_field_count;
     }
 
-    const double *
-    values_of(const unsigned int node) const
+    /** The slot of a field at a node, or no_slot where it has none. */
+    unsigned int
+    slot(const unsigned int node, const unsigned int field) const
     {
-      return values.get_values() + node * NodalLayout::n_components;
+      return field == 0 ? node : extra_slot_of[(field - 1) * n_grid_nodes + node];
+    }
+
+    /** The node of a slot. */
+    unsigned int
+    node_of_slot(const unsigned int slot) const
+    {
+      return slot < n_grid_nodes ? slot : extra_nodes[slot - n_grid_nodes];
+    }
+
+    /** The field of a slot. */
+    unsigned int
+    field_of_slot(const unsigned int slot) const
+    {
+      return slot < n_grid_nodes ? 0 : extra_fields[slot - n_grid_nodes];
     }
 
     /**
-     * Start a projection: clear the given range of components on every node
-     * that may hold a value from the last one. Nodes then written by the
-     * projection must be reported with mark_active().
+     * Slots run below this bound (field 0's and the others' made so far),
+     * for arrays indexed by slot.
+     */
+    unsigned int
+    n_slots() const
+    {
+      return n_grid_nodes + extra_nodes.size();
+    }
+
+    /**
+     * The values of a slot, NodalLayout::n_components of them. A slot of a
+     * field other than 0 may move in memory when claim() makes a new one:
+     * ask again after claiming.
+     */
+    double *
+    values_of(const unsigned int slot)
+    {
+      return slot < n_grid_nodes ?
+               values.get_values() + slot * NodalLayout::n_components :
+               extra_values.data() +
+                 (slot - n_grid_nodes) * NodalLayout::n_components;
+    }
+
+    const double *
+    values_of(const unsigned int slot) const
+    {
+      return const_cast<GridNodes *>(this)->values_of(slot);
+    }
+
+    /** The mass of every field at a node, summed. */
+    double
+    mass_at(const unsigned int node) const
+    {
+      double mass = values_of(node)[NodalLayout::mass];
+      for (unsigned int field = 1; field < n_field_count; ++field)
+        {
+          const unsigned int s = slot(node, field);
+          if (s != no_slot)
+            mass += values_of(s)[NodalLayout::mass];
+        }
+      return mass;
+    }
+
+    /**
+     * Start a projection: clear the given range of components on every slot
+     * that may hold a value from the last one. Slots then written by a
+     * projection of all components must be claimed with claim().
      */
     void
     begin_projection(const unsigned int first_component,
                      const unsigned int n_components);
 
-    void
-    mark_active(const unsigned int node)
+    /**
+     * The slot of a field at a node in a projection of all components: made
+     * (with zero values) if the field has none there yet, and marked as
+     * written.
+     */
+    unsigned int
+    claim(const unsigned int node, const unsigned int field)
     {
-      if (!active_flag[node])
+      if (field == 0)
         {
-          active_flag[node] = true;
-          active_nodes.push_back(node);
+          if (!active_flag[node])
+            {
+              active_flag[node] = true;
+              active_nodes.push_back(node);
+            }
+          return node;
         }
+      unsigned int &s = extra_slot_of[(field - 1) * n_grid_nodes + node];
+      if (s == no_slot)
+        s = make_slot(node, field);
+      return s;
     }
 
     /**
-     * Sum the contributions across ranks, so that every active node, owned
-     * or ghost, holds the full sum.
+     * Sum the contributions across ranks, so that every active slot, owned
+     * or ghost, holds the full sum. Collective.
      */
     void
     finish_projection();
 
-    /** Nodes this rank works on: its active nodes and its imported ones. */
+    /**
+     * Slots this rank works on: its active ones and those of its imported
+     * nodes, field 0's first.
+     */
     const std::vector<unsigned int> &
-    nodes_to_solve() const
+    slots_to_solve() const
     {
-      return solve_nodes;
+      return solve_slots;
     }
 
     /**
+     * The nodes where more than one field has mass after the last
+     * projection: where fields meet.
+     */
+    std::vector<unsigned int>
+    shared_nodes() const;
+
+    /**
      * The values as a vector of the FESystem of 1 + 2 dim Q1 components on
-     * output_dof_handler(), for the grid output (DataOut). Ghost values are
-     * brought up to date first, and the vertices that hang on a coarser
-     * cell's face get the values that the nodes of that face give them.
+     * output_dof_handler(), for the grid output (DataOut): with several
+     * fields, their total mass and their centre-of-mass velocity and
+     * acceleration. Ghost values are brought up to date first, and the
+     * vertices that hang on a coarser cell's face get the values that the
+     * nodes of that face give them.
      */
     const LinearAlgebra::distributed::Vector<double> &
     output_vector() const;
@@ -110,8 +205,25 @@ namespace mpm
     output_dof_handler() const;
 
   private:
-    const Grid<dim> &grid;
-    FESystem<dim>    system_element;
+    /** A new slot of a field other than 0 at a node, claimed. */
+    unsigned int
+    make_slot(const unsigned int node, const unsigned int field);
+
+    /**
+     * finish_projection() for the fields other than 0: ghost slots' sums
+     * go to their owners, who add them and send the totals back to every
+     * rank that has the node as a ghost.
+     */
+    void
+    exchange_extra_fields();
+
+    /** The centre-of-mass values of all fields at a node, into `out`. */
+    void
+    combine_fields(const unsigned int node, double *out) const;
+
+    const Grid<dim> &  grid;
+    const unsigned int n_field_count;
+    FESystem<dim>      system_element;
     /**
      * output_dof_handler(): its dof (node, c) is the value c of the node's
      * global index g in the grid's node numbering, n_components g + c
@@ -120,14 +232,29 @@ namespace mpm
      */
     mutable std::unique_ptr<DoFHandler<dim>>           system_dof_handler;
     mutable LinearAlgebra::distributed::Vector<double> values;
+    /** With several fields: the combined values for the output. */
+    mutable LinearAlgebra::distributed::Vector<double> combined_values;
 
-    /** Per node: written by the current projection. */
+    unsigned int n_grid_nodes = 0;
+    /** Field 0, per node: written by the current projection. */
     std::vector<bool>         active_flag;
     std::vector<unsigned int> active_nodes;
     /** Owned nodes that other ranks may add to in compress(). */
     std::vector<unsigned int> imported_nodes;
-    std::vector<unsigned int> solve_nodes;
+    std::vector<unsigned int> solve_slots;
     bool                      full_projection = true;
+
+    /**
+     * The other fields: per field f >= 1 and node, the slot, or no_slot
+     * (at (f - 1) n_nodes + node); and per slot from n_nodes on its node,
+     * field and values.
+     */
+    std::vector<unsigned int> extra_slot_of;
+    std::vector<unsigned int> extra_nodes;
+    std::vector<unsigned int> extra_fields;
+    std::vector<double>       extra_values;
+    /** The rank that owns each ghost node, from n_owned on. */
+    std::vector<unsigned int> ghost_owner;
 
     boost::signals2::scoped_connection grid_changed;
   };

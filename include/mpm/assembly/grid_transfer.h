@@ -27,12 +27,26 @@ namespace mpm
     using Layout      = PointLayout<dim>;
     using NodalLayout = typename GridNodes<dim>::NodalLayout;
 
-    /** `conditions` act at the nodes in the nodal solve, in this order. */
+    /**
+     * `conditions` act at the nodes in the nodal solve, in this order.
+     * `field_of_body` gives each body (by id) its velocity field in
+     * `nodes`; empty: every point in field 0.
+     */
     GridTransfer(MaterialPoints<dim> &                          points,
                  const GridBasis<dim> &                         basis,
                  GridNodes<dim> &                               nodes,
                  const std::vector<const NodalCondition<dim> *> &conditions,
-                 const Tensor<1, dim> &                         gravity);
+                 const Tensor<1, dim> &                         gravity,
+                 const std::vector<unsigned int> &field_of_body = {});
+
+    /** The velocity field of the point with properties p. */
+    unsigned int
+    field_of(const ArrayView<const double> &p) const
+    {
+      return field_of_body.empty() ?
+               0 :
+               field_of_body[static_cast<unsigned int>(p[Layout::body_id])];
+    }
 
     /**
      * Call f(particle, support) for every local point, points of one cell
@@ -159,11 +173,13 @@ namespace mpm
                       update_point(particle, support);
                       const ArrayView<const double> p =
                         particle->get_properties();
-                      const double m = p[Layout::mass];
+                      const double       m     = p[Layout::mass];
+                      const unsigned int field = field_of(p);
                       for (unsigned int i = 0; i < support.n_nodes; ++i)
                         {
                           double *momentum =
-                            values_aside.data() + support.nodes[i] * dim;
+                            values_aside.data() +
+                            nodes.slot(support.nodes[i], field) * dim;
                           for (unsigned int d = 0; d < dim; ++d)
                             momentum[d] +=
                               support.N[i] * m * p[Layout::velocity + d];
@@ -185,11 +201,17 @@ namespace mpm
       project_aside(NodalLayout::force,
                     [&](auto &particle, const Support<dim> &support) {
                       update_point(particle, support);
-                      add_force(particle->get_properties(),
+                      const ArrayView<const double> p =
+                        particle->get_properties();
+                      const unsigned int field = field_of(p);
+                      add_force(p,
                                 support,
                                 particle->get_location(),
-                                values_aside.data(),
-                                dim);
+                                [&](const unsigned int i) {
+                                  return values_aside.data() +
+                                         nodes.slot(support.nodes[i], field) *
+                                           dim;
+                                });
                     });
     }
 
@@ -202,10 +224,12 @@ namespace mpm
     compute_nodal_velocity(const bool constrain = true);
 
     /**
-     * a = f / m on every node, corrected by the nodal conditions so that
-     * v + dt a meets them, where v is the nodal velocity as it stands
-     * (constrained or not); then v += dt a. With enable_blended_mass(),
-     * the free nodes' a then moves towards the consistent mass's.
+     * a = f / m in every field at every node; where fields meet, the stage
+     * that couples them (couple_fields()); then the nodal conditions correct
+     * each field so that v + dt a meets them, where v is the nodal velocity
+     * as it stands (constrained or not); then v += dt a. With
+     * enable_blended_mass(), the free nodes' a then moves towards the
+     * consistent mass's.
      */
     void
     compute_nodal_acceleration(const double dt);
@@ -224,29 +248,36 @@ namespace mpm
     void
     compute_initial_acceleration();
 
-    /** Nodal velocity and acceleration interpolated at a point. */
+    /**
+     * A nodal vector of one field (velocity or acceleration: `component`)
+     * interpolated at a point.
+     */
     Tensor<1, dim>
-    interpolate(const Support<dim> &support, const unsigned int component) const
+    interpolate(const Support<dim> &support,
+                const unsigned int  field,
+                const unsigned int  component) const
     {
       Tensor<1, dim> result;
       for (unsigned int i = 0; i < support.n_nodes; ++i)
         {
-          const double *v = nodes.values_of(support.nodes[i]) + component;
+          const double *v =
+            nodes.values_of(nodes.slot(support.nodes[i], field)) + component;
           for (unsigned int d = 0; d < dim; ++d)
             result[d] += support.N[i] * v[d];
         }
       return result;
     }
 
-    /** Velocity gradient L = sum v_i (x) grad N_i at a point. */
+    /** Velocity gradient L = sum v_i (x) grad N_i of one field at a point. */
     Tensor<2, dim>
-    velocity_gradient(const Support<dim> &support) const
+    velocity_gradient(const Support<dim> &support,
+                      const unsigned int  field) const
     {
       Tensor<2, dim> L;
       for (unsigned int i = 0; i < support.n_nodes; ++i)
         {
-          const double *v =
-            nodes.values_of(support.nodes[i]) + NodalLayout::velocity;
+          const double *v = nodes.values_of(nodes.slot(support.nodes[i], field)) +
+                            NodalLayout::velocity;
           for (unsigned int a = 0; a < dim; ++a)
             for (unsigned int b = 0; b < dim; ++b)
               L[a][b] += v[a] * support.grad_N[i][b];
@@ -299,50 +330,59 @@ namespace mpm
     void
     project_aside(const unsigned int component, const Function &add_point)
     {
-      const std::vector<unsigned int> &solve_nodes = nodes.nodes_to_solve();
-      size_values_aside(solve_nodes);
-      for (const unsigned int node : solve_nodes)
+      const std::vector<unsigned int> &solve_slots = nodes.slots_to_solve();
+      size_values_aside();
+      for (const unsigned int slot : solve_slots)
         for (unsigned int d = 0; d < dim; ++d)
-          values_aside[node * dim + d] = 0.;
+          values_aside[slot * dim + d] = 0.;
       for_each_point(add_point);
       nodes.begin_projection(component, dim);
-      for (const unsigned int node : solve_nodes)
+      for (const unsigned int slot : solve_slots)
         for (unsigned int d = 0; d < dim; ++d)
-          nodes.values_of(node)[component + d] = values_aside[node * dim + d];
+          nodes.values_of(slot)[component + d] = values_aside[slot * dim + d];
       nodes.finish_projection();
     }
 
-    /**
-     * values_aside and values_kept hold dim values for every node in
-     * `solve_nodes`.
-     */
+    /** values_aside and values_kept hold dim values for every slot. */
     void
-    size_values_aside(const std::vector<unsigned int> &solve_nodes);
+    size_values_aside();
 
     /**
-     * The nodal conditions on a node whose a = f / m is known: they correct
+     * The stage of the nodal solve between a = f / m and the nodal
+     * conditions, at the nodes where two or more fields have mass: where
+     * fields meet, they exchange momentum here. With one field there is
+     * nothing to couple; fields of bodies that do not interact pass through
+     * each other.
+     */
+    void
+    couple_fields(const double dt);
+
+    /**
+     * The nodal conditions on a slot whose a = f / m is known: they correct
      * the velocity v and a so that the end velocity v + dt a meets them,
      * and v becomes that end velocity.
      */
     void
-    apply_explicit_conditions(const unsigned int node, const double dt);
+    apply_explicit_conditions(const unsigned int slot, const double dt);
 
     /**
      * Add a point's gravity, load and internal force (with the hoop term in
      * an axisymmetric scene, which needs its position x) to its nodes: to
-     * the dim values from forces + stride * node on.
+     * the dim values from target(i) on, for the i-th node of the support.
      */
+    template <typename Target>
     void
     add_force(const ArrayView<const double> &p,
               const Support<dim> &           support,
               const Point<dim> &             x,
-              double *                       forces,
-              const unsigned int             stride);
+              const Target &                 target);
     MaterialPoints<dim> &           points;
     const GridBasis<dim> &          basis;
     GridNodes<dim> &                nodes;
     const std::vector<const NodalCondition<dim> *> conditions;
     const Tensor<1, dim>                           gravity;
+    /** By body id; empty: one field. */
+    const std::vector<unsigned int>                field_of_body;
     double                                         load_factor = 1.;
     double                                         time        = 0.;
     typename PointAssembly<dim>::Scratch           scratch;
@@ -350,13 +390,48 @@ namespace mpm
     bool                                           corrected_velocity = false;
     bool                                           blended_mass       = false;
     /**
-     * dim values per node: a nodal field to be corrected, or sums made
+     * dim values per slot: a nodal field to be corrected, or sums made
      * while the nodal values are still read.
      */
     std::vector<double> values_aside;
-    /** dim values per node: what a corrected component held before. */
+    /** dim values per slot: what a corrected component held before. */
     std::vector<double> values_kept;
   };
+
+
+
+  template <int dim>
+  template <typename Target>
+  void
+  GridTransfer<dim>::add_force(const ArrayView<const double> &p,
+                               const Support<dim> &           support,
+                               const Point<dim> &             x,
+                               const Target &                 target)
+  {
+    const double m = p[Layout::mass];
+    // The supports are evaluated at the current positions: dF = I.
+    PointAssembly<dim>::internal_force(
+      support,
+      nullptr,
+      Layout::current_volume(p),
+      Layout::get_stress(p),
+      nullptr,
+      nullptr,
+      scratch,
+      points.get_grid().is_axisymmetric() ? x[0] : 0.);
+    const std::vector<double> &internal = scratch.force;
+    Tensor<1, dim>             external = m * gravity;
+    if (points.has_point_loads())
+      for (unsigned int d = 0; d < dim; ++d)
+        external[d] += p[points.point_load_index() + d];
+    external *= load_factor;
+    for (unsigned int i = 0; i < support.n_nodes; ++i)
+      {
+        double *f = target(i);
+        for (unsigned int d = 0; d < dim; ++d)
+          f[d] += support.N[i] * external[d] - internal[i * dim + d];
+      }
+  }
 } // namespace mpm
 
 #endif

@@ -70,7 +70,6 @@ namespace mpm
     double
     at(const Support<dim> &support, const GridNodes<dim> &nodes) const
     {
-      using NodalLayout = typename GridNodes<dim>::NodalLayout;
       double density = 0.;
       for (unsigned int i = 0; i < support.n_nodes; ++i)
         {
@@ -80,7 +79,7 @@ namespace mpm
             density += support.N[i] *
                        (grid.is_axisymmetric() ?
                           plane_mass.local_element(node) :
-                          nodes.values_of(node)[NodalLayout::mass]) /
+                          nodes.mass_at(node)) /
                        volume;
         }
       return density;

@@ -92,7 +92,8 @@ namespace mpm
 
     void
     constrain_change(const unsigned int node,
-                     double *           change) const override
+                     const unsigned int,
+                     double *change) const override
     {
       apply(node, change);
     }
@@ -100,6 +101,7 @@ namespace mpm
     /** Constrain v and a alike, so that v + dt a is constrained. */
     void
     constrain_explicit(const unsigned int node,
+                       const unsigned int,
                        const double,
                        double *velocity,
                        double *acceleration,

@@ -4,8 +4,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/tensor.h>
 
-#include <mpm/boundary/coulomb_contact.h>
-#include <mpm/boundary/nodal_condition.h>
+#include <mpm/boundary/rigid_contact.h>
 #include <mpm/grid/grid.h>
 
 #include <algorithm>
@@ -38,7 +37,7 @@ namespace mpm
    * into a CSV file at each output time.
    */
   template <int dim>
-  class FrictionWalls : public NodalCondition<dim>
+  class FrictionWalls : public RigidContact<dim>
   {
   public:
     /** `Boundary conditions/Friction boundaries`. */
@@ -106,6 +105,7 @@ namespace mpm
 
     void
     constrain_explicit(const unsigned int node,
+                       const unsigned int slot,
                        const double       mass,
                        double *           velocity,
                        double *           acceleration,
@@ -122,8 +122,12 @@ namespace mpm
      * wall less the friction's answer to the change of the normal force.
      */
     void
-    constrain_change(const unsigned int node,
-                     double *           change) const override;
+    constrain_change(const unsigned int,
+                     const unsigned int slot,
+                     double *           change) const override
+    {
+      this->follow_change(slot, change);
+    }
 
     /** The node's walls, in the order of the entry. */
     unsigned int
@@ -160,7 +164,7 @@ namespace mpm
     void
     reset_reactions() const override
     {
-      std::fill(reactions.begin(), reactions.end(), Reaction());
+      this->clear_reactions();
     }
 
     /** Split into the parts along the wall's normal and across it. */
@@ -170,9 +174,7 @@ namespace mpm
                     const Tensor<1, dim> &force) const override
     {
       const unsigned int c = first_contact[node] + k;
-      reactions[c].normal  = force * contacts[c].outward;
-      reactions[c].tangential =
-        force - reactions[c].normal * contacts[c].outward;
+      this->record(node, c, contacts[c].outward, force);
     }
 
     /** `<wall>_normal_force` and `<wall>_tangential_force` per wall. */
@@ -221,19 +223,6 @@ namespace mpm
       Point<dim> position;
     };
 
-    /**
-     * The force of the material on the wall at one contact, and in an
-     * explicit solve the law that gave it (inactive where the wall did not
-     * stand).
-     */
-    struct Reaction
-    {
-      double              normal = 0.;
-      Tensor<1, dim>      tangential;
-      bool                solved = false;
-      CoulombContact<dim> law;
-    };
-
     /** Per wall: the total force vector from owned nodes, on this rank. */
     std::vector<Tensor<1, dim>>
     local_wall_forces() const;
@@ -242,14 +231,15 @@ namespace mpm
     static Tensor<1, dim>
     tangent_of(const Tensor<1, dim> &normal);
 
-    const Grid<dim> & grid;
+    using RigidContact<dim>::grid;
     std::vector<Wall> walls;
 
-    /** Contacts of node k: first_contact[k] to first_contact[k + 1]. */
+    /**
+     * Contacts of node k: first_contact[k] to first_contact[k + 1]. A
+     * contact is a surface of the reactions (RigidContact).
+     */
     std::vector<unsigned int> first_contact;
     std::vector<Contact>      contacts;
-    /** Per contact, as measured by the last nodal solve. */
-    mutable std::vector<Reaction> reactions;
     /** The start of the step of the last nodal solve. */
     mutable double solve_time = 0.;
 

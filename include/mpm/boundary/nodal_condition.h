@@ -70,15 +70,17 @@ namespace mpm
     constrain_velocity(const unsigned int node, double *velocity) const = 0;
 
     /**
-     * Answer a change of a node's explicit acceleration made after
-     * constrain_explicit() (the blended mass), in place: what the
-     * condition forbids goes, and what it reports (a wall's force) follows
-     * what it takes. A fixed linear projection of the velocity applies
-     * that projection; a wall its law again, from the velocity the node
-     * would reach with the change.
+     * Answer a change of the explicit acceleration of a field at a node
+     * (the slot, GridNodes) made after constrain_explicit() (the blended
+     * mass), in place: what the condition forbids goes, and what it
+     * reports (a wall's force) follows what it takes. A fixed linear
+     * projection of the velocity applies that projection; a wall its law
+     * again, from the velocity the node would reach with the change.
      */
     virtual void
-    constrain_change(const unsigned int node, double *change) const = 0;
+    constrain_change(const unsigned int node,
+                     const unsigned int slot,
+                     double *           change) const = 0;
 
     /**
      * The acceleration of a node at the start of a Newmark run, given its
@@ -98,9 +100,11 @@ namespace mpm
     {}
 
     /**
-     * The explicit nodal solve at a node, dt > 0. On entry `acceleration`
-     * is f / m, and the node would end the step with velocity + dt
-     * acceleration. The condition changes the velocity, the acceleration
+     * The explicit nodal solve of one velocity field at a node, dt > 0:
+     * `slot` names the field at the node (GridNodes), for what the
+     * condition records of it; each field at a node is solved alone. On
+     * entry `acceleration` is f / m, and the field would end the step with
+     * velocity + dt acceleration. The condition changes the velocity, the acceleration
      * or both so that this end velocity meets it. The caller then gives
      * the node that end velocity, and the acceleration (end velocity -
      * velocity on entry) / dt, which holds the condition's reaction
@@ -110,6 +114,7 @@ namespace mpm
      */
     virtual void
     constrain_explicit(const unsigned int node,
+                       const unsigned int slot,
                        const double       mass,
                        double *           velocity,
                        double *           acceleration,

@@ -6,13 +6,11 @@
 #include <deal.II/base/tensor.h>
 
 #include <mpm/base/shape.h>
-#include <mpm/boundary/coulomb_contact.h>
-#include <mpm/boundary/nodal_condition.h>
+#include <mpm/boundary/rigid_contact.h>
 #include <mpm/grid/grid.h>
 
 #include <memory>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 namespace mpm
@@ -37,7 +35,7 @@ namespace mpm
    * repeats an uninterrupted one. A constant velocity V is u = V t.
    */
   template <int dim>
-  class RigidObstacles : public NodalCondition<dim>
+  class RigidObstacles : public RigidContact<dim>
   {
   public:
     /** `Obstacles/<name>` for each name. */
@@ -83,8 +81,12 @@ namespace mpm
      * change (CoulombContact::follow_change).
      */
     void
-    constrain_change(const unsigned int node,
-                     double *           change) const override;
+    constrain_change(const unsigned int,
+                     const unsigned int slot,
+                     double *           change) const override
+    {
+      this->follow_change(slot, change);
+    }
 
     /** Place the obstacles at t + dt, with their velocity over the step. */
     void
@@ -92,6 +94,7 @@ namespace mpm
 
     void
     constrain_explicit(const unsigned int node,
+                       const unsigned int slot,
                        const double       mass,
                        double *           velocity,
                        double *           acceleration,
@@ -147,21 +150,6 @@ namespace mpm
     };
 
     /**
-     * One obstacle at one node that lies in it, as measured by the last
-     * nodal solve, with the law that gave it (inactive where the node did
-     * not press on it).
-     */
-    struct Reaction
-    {
-      unsigned int        node;
-      unsigned int        obstacle;
-      double              normal = 0.;
-      Tensor<1, dim>      tangential;
-      Tensor<1, dim>      force;
-      CoulombContact<dim> law;
-    };
-
-    /**
      * The outward normal of obstacle k that a node meets, moving with
      * `relative` velocity to it.
      */
@@ -174,15 +162,13 @@ namespace mpm
     double
     distance(const unsigned int k, const unsigned int node) const;
 
-    const Grid<dim>       &grid;
+    using RigidContact<dim>::grid;
+    /** Each is a surface of the reactions (RigidContact). */
     std::vector<Obstacle> obstacles;
 
     /** Per obstacle, set by begin_explicit_solve(). */
     mutable std::vector<Tensor<1, dim>> offsets;
     mutable std::vector<Tensor<1, dim>> velocities;
-    mutable std::vector<Reaction>       reactions;
-    /** Where the reactions of a node start (they follow each other). */
-    mutable std::unordered_map<unsigned int, unsigned int> first_reaction;
 
     /**
      * Whether setup() has checked the obstacles against a grid. An adaptive
