@@ -76,6 +76,14 @@ main(int argc, char **argv)
            with({"Time stepping/Update scheme=RK4"}));
   run_case("Poisson's ratio 0.5", with({"Materials/rubber/Poisson's ratio=0.5"}));
   run_case("zero Young's modulus", with({"Materials/rubber/Young's modulus=0"}));
+  run_case("a Young's modulus beyond any solid",
+           with({"Materials/rubber/Young's modulus=1e300"}));
+  run_case("a Young's modulus below any solid",
+           with({"Materials/rubber/Young's modulus=1e-300"}));
+  run_case("a density beyond any material",
+           with({"Materials/rubber/Density=1e300"}));
+  run_case("a snapshot at every step",
+           with({"Output/Interval=1e-300"}));
   run_case("unknown material", with({"Bodies/block/Material=steel"}));
   run_case("softening that raises the cohesion",
            with({"Materials/rubber/Model=Mohr-Coulomb",

@@ -344,7 +344,10 @@ namespace mpm
       throw InputError("Output/Directory = '" + output_directory +
                        "' cannot be created.");
     vtu_output =
-      std::make_unique<VtuOutput<dim>>(prm, output_directory, communicator);
+      std::make_unique<VtuOutput<dim>>(prm,
+                                       output_directory,
+                                       end_time,
+                                       communicator);
     time_series = std::make_unique<TimeSeries<dim>>(
       prm, output_directory, gravity, *points, nodal_conditions, restart);
     // The tangent check only prints, and the explicit velocity projection

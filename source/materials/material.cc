@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <map>
+#include <sstream>
 
 namespace mpm
 {
@@ -99,6 +100,29 @@ namespace mpm
       throw InputError(section_path + "/Density must be positive.");
     if (!(youngs_modulus > 0.))
       throw InputError(section_path + "/Young's modulus must be positive.");
+    // Beyond these the explicit step (a cell over the wave speed) is not a
+    // physical scale: 1e300 Pa would take steps of 1e-150 s without end.
+    const auto out_of_range = [&](const std::string &entry,
+                                  const double       value,
+                                  const std::string &unit,
+                                  const std::string &range) {
+      std::ostringstream message;
+      message << section_path << "/" << entry << " = " << value << " " << unit
+              << " lies outside what any material has (" << range
+              << "); the wave speed and the explicit step follow from it.";
+      return InputError(message.str());
+    };
+    if (youngs_modulus > 1e13 || youngs_modulus < 1e-3)
+      throw out_of_range("Young's modulus",
+                         youngs_modulus,
+                         "Pa",
+                         "give E in Pa, from 1e-3 to 1e13; diamond has 1.2e12");
+    if (rho > 1e5 || rho < 1e-3)
+      throw out_of_range("Density",
+                         rho,
+                         "kg/m^3",
+                         "give it in kg/m^3, from 1e-3 to 1e5; osmium has "
+                         "22,590");
     if (!(poissons_ratio > -1. && poissons_ratio < 0.5))
       throw InputError(section_path +
                        "/Poisson's ratio must lie strictly between -1 and "

@@ -3,10 +3,12 @@
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/particles/data_out.h>
 
+#include <mpm/base/input_error.h>
 #include <mpm/output/vtu_output.h>
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 namespace mpm
 {
@@ -108,6 +110,7 @@ namespace mpm
   template <int dim>
   VtuOutput<dim>::VtuOutput(ParameterHandler & prm,
                             const std::string &directory,
+                            const double       end_time,
                             const MPI_Comm     communicator)
     : directory(directory.empty() || directory.back() == '/' ? directory :
                                                                  directory + "/")
@@ -118,6 +121,19 @@ namespace mpm
     snapshot_interval = prm.get_double("Interval");
     write_grid        = prm.get_bool("Write grid");
     prm.leave_subsection();
+    const double max_snapshots = 1e5;
+    if (write_paraview && snapshot_interval > 0. &&
+        end_time / snapshot_interval > max_snapshots)
+      {
+        std::ostringstream message;
+        message << "Output/Interval = " << snapshot_interval
+                << " would write " << end_time / snapshot_interval
+                << " snapshots before End time = " << end_time
+                << "; give at least End time / " << max_snapshots << " = "
+                << end_time / max_snapshots
+                << ", or 0 for the first and the last state only.";
+        throw InputError(message.str());
+      }
   }
 
 

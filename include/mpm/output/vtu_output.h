@@ -38,10 +38,12 @@ namespace mpm
 
     /**
      * Parse the `Output` subsection (the handler is at top level); files go
-     * into `directory`.
+     * into `directory`. An Interval that would write more than 100,000
+     * snapshots before `end_time` is refused (InputError).
      */
     VtuOutput(ParameterHandler & prm,
               const std::string &directory,
+              const double       end_time,
               const MPI_Comm     communicator);
 
     /** Whether snapshots are written at all. */
