@@ -32,14 +32,14 @@ namespace mpm
   GridTransfer<dim>::project_mass_momentum(const bool with_force)
   {
     nodes.begin_projection(0, NodalLayout::n_components);
-    if (nodal_density)
-      nodal_density->begin_projection();
+    for (const auto &field : grid_fields)
+      field->begin_projection();
     for_each_point([&](const auto &particle, const Support<dim> &support) {
       const ArrayView<const double> p     = particle->get_properties();
       const double                  m     = p[Layout::mass];
       const unsigned int            field = field_of(p);
-      if (nodal_density)
-        nodal_density->add_point(support, m, particle->get_location());
+      for (const auto &field : grid_fields)
+        field->add_point(support, p, particle->get_location());
       for (unsigned int i = 0; i < support.n_nodes; ++i)
         {
           double *     v  = nodes.values_of(nodes.claim(support.nodes[i], field));
@@ -58,8 +58,37 @@ namespace mpm
                   });
     });
     nodes.finish_projection();
-    if (nodal_density)
-      nodal_density->compute_occupied_volumes(points.handler());
+    for (const auto &field : grid_fields)
+      field->finish_projection(points.handler());
+  }
+
+
+
+  template <int dim>
+  void
+  GridTransfer<dim>::use_grid_fields(
+    const std::vector<std::unique_ptr<Material>> &materials)
+  {
+    std::vector<std::string> names;
+    fields_of_law.clear();
+    for (const auto &material : materials)
+      {
+        const std::vector<std::string> wanted = material->grid_fields();
+        AssertThrow(wanted.size() <= StepKinematics::max_grid_fields,
+                    ExcInternalError());
+        fields_of_law.emplace_back();
+        for (const std::string &name : wanted)
+          {
+            const auto known = std::find(names.begin(), names.end(), name);
+            fields_of_law.back().push_back(known - names.begin());
+            if (known == names.end())
+              {
+                names.push_back(name);
+                grid_fields.push_back(GridField<dim>::create(
+                  name, points.get_grid(), basis));
+              }
+          }
+      }
   }
 
 

@@ -15,8 +15,6 @@ namespace mpm
   void
   NodalDensity<dim>::begin_projection()
   {
-    if (!grid.is_axisymmetric())
-      return;
     // The grid may have changed since the last step.
     if (plane_mass.get_partitioner() != grid.node_partitioner())
       plane_mass.reinit(grid.node_partitioner());
@@ -28,7 +26,7 @@ namespace mpm
 
   template <int dim>
   void
-  NodalDensity<dim>::compute_occupied_volumes(
+  NodalDensity<dim>::finish_projection(
     const Particles::ParticleHandler<dim> &handler)
   {
     // The grid may have changed since the last step.
@@ -47,15 +45,14 @@ namespace mpm
     occupied_volume.compress(VectorOperation::add);
     occupied_volume.update_ghost_values();
 
-    if (grid.is_axisymmetric())
-      {
-        plane_mass.compress(VectorOperation::add);
-        plane_mass.update_ghost_values();
-      }
+    plane_mass.compress(VectorOperation::add);
+    plane_mass.update_ghost_values();
   }
 
 
 
   template class NodalDensity<2>;
   template class NodalDensity<3>;
+
+  MPM_REGISTER_GRID_FIELD(NodalDensity, "Density from positions")
 } // namespace mpm

@@ -136,7 +136,8 @@ namespace mpm
                                material.density();
       // An axisymmetric point is the ring its area sweeps: 2 pi x times
       // the area (Pappus), exact for a box centred at the point.
-      const double volume = c.volume * grid.out_of_plane_measure(c.x);
+      const double volume =
+        c.volume * grid.geometry().out_of_plane_measure(c.x);
       properties[Layout::mass]             = density * volume;
       properties[Layout::reference_volume] = volume;
       for (unsigned int d = 0; d < dim; ++d)
@@ -430,7 +431,7 @@ namespace mpm
             (unit_symmetric_tensor<3>() - vertical) +
           sigma_v * vertical;
         // A plate's faces are free.
-        if (points.get_grid().is_plane_stress())
+        if (points.get_grid().geometry().free_faces())
           stress[2][2] = 0.;
         Layout::set_stress(p, stress);
         try

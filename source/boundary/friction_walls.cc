@@ -135,7 +135,7 @@ namespace mpm
                 // in plane stress over the plate's initial thickness.
                 double share = face->measure() / face->n_vertices();
                 if (dim == 2)
-                  share *= grid.out_of_plane_measure(
+                  share *= grid.geometry().out_of_plane_measure(
                     Point<dim>((2. * face->vertex(v) + face->vertex(1 - v)) /
                                3.));
                 contact.area += share;

@@ -121,7 +121,8 @@ namespace mpm
     using Layout = PointLayout<dim>;
     auto inside  = [&](const Point<dim> &x) { return region->contains(x); };
     const bool radial_surface = is_traction &&
-                                points.get_grid().is_axisymmetric() &&
+                                points.get_grid().geometry().kind() ==
+                                  Geometry<dim>::Kind::axisymmetric &&
                                 traction_normal == 0;
     if (radial_surface && traction_side == 0)
       throw InputError("Loads/Traction normal = x in an axisymmetric scene: "

@@ -72,7 +72,8 @@ namespace mpm
                            prm.get("Displacement") + "' must have " +
                            std::to_string(dim) +
                            " ';'-separated components.");
-        if (grid.is_axisymmetric() && expressions[0] != "0")
+        if (grid.geometry().kind() == Geometry<dim>::Kind::axisymmetric &&
+            expressions[0] != "0")
           throw InputError(path + "/Displacement = '" +
                            prm.get("Displacement") +
                            "': in an axisymmetric scene an obstacle is a "

@@ -138,10 +138,10 @@ namespace mpm
       }
     prm.leave_subsection();
     for (const auto &material : materials)
-      if (material->needs_density_from_positions() &&
-          scheme_name != "explicit")
-        throw InputError("Materials/" + material->name() + ": Density from "
-                         "positions needs Time stepping/Scheme = explicit.");
+      for (const std::string &field : material->grid_fields())
+        if (scheme_name != "explicit")
+          throw InputError("Materials/" + material->name() + ": " + field +
+                           " needs Time stepping/Scheme = explicit.");
 
     grid      = std::make_unique<Grid<dim>>(prm, communicator);
     dirichlet = std::make_unique<DirichletConditions<dim>>(prm, *grid);
@@ -159,13 +159,15 @@ namespace mpm
       throw InputError("Boundary conditions/Friction boundaries act with "
                        "Method = MPM; the meshfree methods take Fixed, Slip "
                        "and Contact boundaries.");
-    if (grid->is_axisymmetric() && gravity[0] != 0.)
+    using GeometryKind = typename Geometry<dim>::Kind;
+    const GeometryKind geometry = grid->geometry().kind();
+    if (geometry == GeometryKind::axisymmetric && gravity[0] != 0.)
       throw InputError("Gravity has an x component in an axisymmetric "
                        "scene, where x is the radius: gravity must act "
                        "along the axis, y.");
     for (const auto &material : materials)
-      if (grid->is_plane_stress() &&
-          (material->needs_density_from_positions() ||
+      if (geometry == GeometryKind::plane_stress &&
+          (!material->grid_fields().empty() ||
            material->stress_follows_density()))
         throw InputError("Materials/" + material->name() + ": a law whose "
                          "stress follows the density is for loose fill, "
@@ -179,7 +181,7 @@ namespace mpm
                        " are MPM's; with Method = " + method +
                        " the shape functions are the meshfree ones (leave "
                        "Shape functions at linear).");
-    if (grid->is_axisymmetric() && method != "MPM")
+    if (geometry == GeometryKind::axisymmetric && method != "MPM")
       throw InputError("Grid/Geometry = axisymmetric runs with Method = "
                        "MPM; the meshfree methods are plane strain or 3D "
                        "only.");
@@ -194,7 +196,7 @@ namespace mpm
     // Set up the grid and everything on it (the conditions find their
     // nodes when the grid announces itself).
     grid->create();
-    if (grid->is_axisymmetric())
+    if (geometry == GeometryKind::axisymmetric)
       check_axis();
     nodes = std::make_unique<GridNodes<dim>>(*grid);
     nodes->setup();
@@ -294,12 +296,7 @@ namespace mpm
       nodal_conditions.push_back(obstacles.get());
     transfer         = std::make_unique<GridTransfer<dim>>(
       *points, *basis, *nodes, nodal_conditions, gravity);
-    if (std::any_of(materials.begin(),
-                    materials.end(),
-                    [](const std::unique_ptr<Material> &material) {
-                      return material->needs_density_from_positions();
-                    }))
-      transfer->enable_density_from_positions(*grid);
+    transfer->use_grid_fields(materials);
     const typename TimeScheme<dim>::Scene scene{*grid,
                                                 *points,
                                                 *transfer,

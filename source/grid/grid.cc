@@ -42,29 +42,7 @@ namespace mpm
                       "A gmsh .msh file with the coarse grid, relative to the "
                       "parameter file. Physical tags on its boundary become "
                       "boundary ids.");
-    prm.declare_entry(
-      "Geometry",
-      "plane strain",
-      Patterns::Selection("plane strain|plane stress|axisymmetric"),
-      "What a 2D scene stands for. plane strain: a slice of unit depth "
-      "(F_zz = 1, sigma_zz kept). plane stress: a plate of initial "
-      "thickness Thickness, free on both faces (sigma_zz = 0 at every "
-      "point, met by its law, with F_zz = h / h_0 the thickness ratio, an "
-      "output); masses, volumes and forces are those of the plate, so "
-      "with Thickness = 1 they are per unit initial thickness. "
-      "axisymmetric: a body of revolution about "
-      "the y axis, x the radius (the grid must lie in x >= 0, and a grid "
-      "boundary on the axis must be a Slip or Fixed boundary); each point "
-      "is the ring it sweeps, so masses, forces, impulses and removed mass "
-      "are those of the full ring (2 pi x), and sigma_zz is the hoop "
-      "stress. Axisymmetric scenes run with MPM in every scheme. "
-      "3D scenes take plane strain (the default), which there means no "
-      "reduction.");
-    prm.declare_entry("Thickness",
-                      "1",
-                      Patterns::Double(),
-                      "The plate's initial thickness h_0 in plane stress "
-                      "[m]. Only with Geometry = plane stress.");
+    Geometry<dim>::declare_parameters(prm);
     prm.declare_entry("Global refinements",
                       "0",
                       Patterns::Integer(0, 20),
@@ -82,11 +60,17 @@ namespace mpm
 
   template <int dim>
   Grid<dim>::Grid(ParameterHandler &prm, const MPI_Comm communicator)
+    : scene_geometry([&prm]() {
+      prm.enter_subsection("Grid");
+      const Geometry<dim> geometry(prm);
+      prm.leave_subsection();
+      return geometry;
+    }())
     // Rebuilt from the coarse mesh at every repartition, so that the cells'
     // local order, and with it the node numbering and every sum over
     // cells, depends on the partition only, not on how it was reached: a
     // run continued from a checkpoint restores the partition directly.
-    : triangulation(communicator,
+    , triangulation(communicator,
                     Triangulation<dim>::none,
                     parallel::distributed::Triangulation<
                       dim>::mesh_reconstruction_after_repartitioning)
@@ -98,23 +82,6 @@ namespace mpm
     arguments     = prm.get("Arguments");
     mesh_file     = prm.get("Mesh file");
     n_refinements = prm.get_integer("Global refinements");
-    axisymmetric  = prm.get("Geometry") == "axisymmetric";
-    plane_stress  = prm.get("Geometry") == "plane stress";
-    if (axisymmetric && dim != 2)
-      throw InputError("Grid/Geometry = axisymmetric needs Dimension = 2 (x "
-                       "the radius, y the axis).");
-    if (plane_stress && dim != 2)
-      throw InputError("Grid/Geometry = plane stress needs Dimension = 2 "
-                       "(a plate in the x-y plane).");
-    thickness = prm.get_double("Thickness");
-    if (!plane_stress && thickness != 1.)
-      throw InputError("Grid/Thickness is the plate's thickness in plane "
-                       "stress: set Grid/Geometry = plane stress, or leave "
-                       "Thickness at 1 (a plane-strain slice has unit "
-                       "depth).");
-    if (!(thickness > 0.) || !std::isfinite(thickness))
-      throw InputError("Grid/Thickness = " + prm.get("Thickness") +
-                       ": the plate's thickness must be positive.");
     for (const auto &entry :
          Utilities::split_string_list(prm.get("Boundary names"), ','))
       {
@@ -168,7 +135,7 @@ namespace mpm
           }
       }
     triangulation.refine_global(n_refinements);
-    if (axisymmetric)
+    if (scene_geometry.kind() == Geometry<dim>::Kind::axisymmetric)
       {
         double lowest = std::numeric_limits<double>::max(), size = 0.;
         for (const auto &cell : triangulation.active_cell_iterators())

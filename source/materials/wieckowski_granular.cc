@@ -99,9 +99,9 @@ namespace mpm
     const SymmetricTensor<2, 3> D = symmetrize(L);
     // The volume ratio to the reference state, rho_ref / rho: a point
     // seeded loose (below the law's Density) starts expanded.
-    const double J = kinematics.density > 0. ?
-                       density() / kinematics.density :
-                       determinant(kinematics.F_new);
+    const double rho = density_from_positions ? kinematics.grid_fields[0] :
+                                                kinematics.density;
+    const double J   = rho > 0. ? density() / rho : determinant(kinematics.F_new);
     internal_variables[1]         = std::log(J);
     if (separated(J))
       {

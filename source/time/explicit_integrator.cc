@@ -135,6 +135,7 @@ namespace mpm
   void
   ExplicitIntegrator<dim>::prepare_stress_update()
   {
+    transfer.solve_grid_fields();
     if (average_dilatation)
       average_dilatation_rates();
   }
@@ -183,7 +184,7 @@ namespace mpm
         // The cell's mean dilatation rate in place of the point's own,
         // spread over the directions that can stretch (in plane strain
         // not zz).
-        const unsigned int n = grid.is_axisymmetric() ? 3 : dim;
+        const unsigned int n = grid.geometry().n_stretching_directions();
         const double       shift =
           (cell_dilatation_rate[particle->get_surrounding_cell()
                                   ->active_cell_index()] -
@@ -210,12 +211,14 @@ namespace mpm
     kinematics.F_new             = F_new;
     kinematics.velocity_gradient = L;
     kinematics.dt                = dt;
-    kinematics.density           = transfer.density(
-      support, p, F_new, material.needs_density_from_positions());
+    kinematics.density = p[Layout::mass] / Layout::current_volume(p, F_new);
+    transfer.read_grid_fields(static_cast<unsigned int>(p[Layout::material_id]),
+                              support,
+                              kinematics);
     if (!PointState<dim>::commit(materials,
                                  kinematics,
                                  p,
-                                 grid.is_plane_stress()))
+                                 grid.geometry().free_faces()))
       {
         report.record_failure(particle->get_location(),
                               "no out-of-plane stretch of a material point "
@@ -244,10 +247,9 @@ namespace mpm
     const unsigned int field = transfer.field_of(particle->get_properties());
     return Layout::embed(
       transfer.velocity_gradient(support, field),
-      grid.is_axisymmetric() ?
-        transfer.interpolate(support, field, NodalLayout::velocity)[0] /
-          particle->get_location()[0] :
-        0.);
+      grid.geometry().hoop_ratio(particle->get_location(), [&]() {
+        return transfer.interpolate(support, field, NodalLayout::velocity)[0];
+      }));
   }
 
 

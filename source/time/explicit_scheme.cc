@@ -122,7 +122,7 @@ namespace mpm
                  scene.grid,
                  scene.timer)
   {
-    if (scene.grid.is_plane_stress() &&
+    if (scene.grid.geometry().kind() == Geometry<dim>::Kind::plane_stress &&
         TimeScheme<dim>::time_stepping_entry(prm, "Dilatation rate") !=
           "point")
       throw InputError("Time stepping/Dilatation rate = cell average is for "

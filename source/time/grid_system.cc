@@ -332,14 +332,14 @@ namespace mpm
         const ArrayView<const double> p = particle.get_properties();
         // In plane stress the points' volumes at their initial thickness:
         // the cell holds them at their own thickness.
-        volume += Layout::current_volume(p) /
-                  (dim == 2 && grid.is_plane_stress() ?
-                     p[Layout::out_of_plane_stretch] :
-                     1.);
+        volume += grid.geometry().volume_at_initial_thickness(
+          Layout::current_volume(p),
+          dim == 2 ? p[Layout::out_of_plane_stretch] : 1.);
       }
     // The cell's volume: in axisymmetry the ring it sweeps, 2 pi x_c A at
     // its centroid x_c (Pappus); in plane stress A h_0.
-    return cell->measure() * grid.out_of_plane_measure(cell->barycenter()) /
+    return cell->measure() *
+             grid.geometry().out_of_plane_measure(cell->barycenter()) /
            volume;
   }
 

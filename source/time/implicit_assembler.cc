@@ -47,7 +47,8 @@ namespace mpm
     double momentum_rate_square  = 0.;
     bool   inverted              = false;
     bool   out_of_plane_failed   = false;
-    const bool plane_stress = points.get_grid().is_plane_stress();
+    const Geometry<dim> &geometry     = points.get_grid().geometry();
+    const bool           plane_stress = geometry.free_faces();
 
     FullMatrix<double>          cell_tangent;
     Vector<double>              cell_residual, cell_external;
@@ -84,8 +85,7 @@ namespace mpm
             const Tensor<2, dim>          dF =
               PointAssembly<dim>::deformation_increment(support, du);
             const Point<dim> &position = group.particles[q]->get_location();
-            const double      hoop     = hoop_increment(
-              points.get_grid().is_axisymmetric(), support, du, position);
+            const double      hoop     = hoop_increment(geometry, support, du, position);
             StepKinematics k = step_kinematics(dF, hoop, p, state.time_step);
             const Material &material =
               *materials[static_cast<unsigned int>(p[Layout::material_id])];
@@ -116,7 +116,7 @@ namespace mpm
               &c,
               with_tangent ? &own_tangent : nullptr,
               scratch,
-              points.get_grid().is_axisymmetric() ? hoop * position[0] : 0.);
+              hoop * geometry.hoop_radius(position));
             const std::vector<double> &point_force = scratch.force;
 
             for (unsigned int i = 0; i < support.n_nodes; ++i)

@@ -190,7 +190,7 @@ namespace mpm
             const StepKinematics k = ImplicitAssembler<dim>::step_kinematics(
               dF,
               ImplicitAssembler<dim>::hoop_increment(
-                points.get_grid().is_axisymmetric(),
+                points.get_grid().geometry(),
                 support,
                 du,
                 particle->get_location()),
@@ -202,7 +202,7 @@ namespace mpm
                           materials,
                           k,
                           p,
-                          points.get_grid().is_plane_stress()),
+                          points.get_grid().geometry().free_faces()),
                         ExcInternalError());
 
             Tensor<1, dim> displacement_at_point;

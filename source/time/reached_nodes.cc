@@ -73,7 +73,7 @@ namespace mpm
           // thickness, to compare with a cell's area.
           const double volume =
             PointLayout<dim>::current_volume(particle->get_properties()) /
-            grid.out_of_plane_measure(particle->get_location());
+            grid.geometry().out_of_plane_measure(particle->get_location());
           for (unsigned int i = 0; i < support.n_nodes; ++i)
             {
               reached.local_element(support.nodes[i]) = 1.;

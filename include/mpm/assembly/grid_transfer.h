@@ -4,10 +4,11 @@
 #include <deal.II/base/tensor.h>
 
 #include <mpm/assembly/grid_nodes.h>
-#include <mpm/assembly/nodal_density.h>
+#include <mpm/assembly/grid_field.h>
 #include <mpm/assembly/point_assembly.h>
 #include <mpm/basis/grid_basis.h>
 #include <mpm/boundary/nodal_condition.h>
+#include <mpm/materials/material.h>
 #include <mpm/points/material_points.h>
 
 namespace mpm
@@ -82,13 +83,39 @@ namespace mpm
     }
 
     /**
-     * From now on, each projection of the mass also finds the occupied
-     * nodal volumes, for density() from the point positions.
+     * Build the grid fields that the laws read (Material::grid_fields()),
+     * each once, in the order the laws name them; from now on each
+     * projection of the mass projects them too.
      */
     void
-    enable_density_from_positions(const Grid<dim> &grid)
+    use_grid_fields(const std::vector<std::unique_ptr<Material>> &materials);
+
+    /**
+     * Solve the grid fields that obey an equation on the grid
+     * (GridField::solve()): between the nodal solve and the stress update.
+     * Collective.
+     */
+    void
+    solve_grid_fields()
     {
-      nodal_density = std::make_unique<NodalDensity<dim>>(grid, basis);
+      for (const auto &field : grid_fields)
+        field->solve();
+    }
+
+    /**
+     * Hand a point's law the values of the grid fields it reads, at the
+     * point with this support: into kinematics.grid_fields.
+     */
+    void
+    read_grid_fields(const unsigned int  material_id,
+                     const Support<dim> &support,
+                     StepKinematics &    kinematics) const
+    {
+      if (material_id >= fields_of_law.size())
+        return;
+      const std::vector<unsigned int> &fields = fields_of_law[material_id];
+      for (unsigned int k = 0; k < fields.size(); ++k)
+        kinematics.grid_fields[k] = grid_fields[fields[k]]->value(support);
     }
 
     /**
@@ -117,23 +144,6 @@ namespace mpm
     has_blended_mass() const
     {
       return blended_mass;
-    }
-
-    /**
-     * The density of a point with properties p, support `support` and
-     * deformation gradient F: from the point positions if `from_positions`
-     * (which needs enable_density_from_positions()), else its mass over its
-     * current volume.
-     */
-    double
-    density(const Support<dim> &           support,
-            const ArrayView<const double> &p,
-            const Tensor<2, 3> &           F,
-            const bool                     from_positions) const
-    {
-      Assert(!from_positions || nodal_density, ExcInternalError());
-      return from_positions ? nodal_density->at(support, nodes) :
-                              p[Layout::mass] / Layout::current_volume(p, F);
     }
 
     const Tensor<1, dim> &
@@ -386,7 +396,9 @@ namespace mpm
     double                                         load_factor = 1.;
     double                                         time        = 0.;
     typename PointAssembly<dim>::Scratch           scratch;
-    std::unique_ptr<NodalDensity<dim>>             nodal_density;
+    /** The grid fields the laws read, and per law (by id) its fields' indices. */
+    std::vector<std::unique_ptr<GridField<dim>>>   grid_fields;
+    std::vector<std::vector<unsigned int>>         fields_of_law;
     bool                                           corrected_velocity = false;
     bool                                           blended_mass       = false;
     /**
@@ -418,7 +430,7 @@ namespace mpm
       nullptr,
       nullptr,
       scratch,
-      points.get_grid().is_axisymmetric() ? x[0] : 0.);
+      points.get_grid().geometry().hoop_radius(x));
     const std::vector<double> &internal = scratch.force;
     Tensor<1, dim>             external = m * gravity;
     if (points.has_point_loads())

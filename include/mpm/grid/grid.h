@@ -15,6 +15,8 @@
 
 #include <boost/signals2/signal.hpp>
 
+#include <mpm/grid/geometry.h>
+
 #include <array>
 #include <functional>
 #include <map>
@@ -171,29 +173,11 @@ namespace mpm
       return *mapping;
     }
 
-    /** Whether the scene is axisymmetric (Geometry), x the radius. */
-    bool
-    is_axisymmetric() const
+    /** What the plane of a 2D scene stands for, and its measures. */
+    const Geometry<dim> &
+    geometry() const
     {
-      return axisymmetric;
-    }
-
-    /** Whether the scene is a plate in plane stress (Geometry). */
-    bool
-    is_plane_stress() const
-    {
-      return plane_stress;
-    }
-
-    /**
-     * What a unit of 2D area or length at x stands for: the ring it sweeps
-     * about the axis, 2 pi x, in an axisymmetric scene; the plate's initial
-     * thickness in plane stress; 1 otherwise (and in 3D).
-     */
-    double
-    out_of_plane_measure(const Point<dim> &x) const
-    {
-      return axisymmetric ? 2. * numbers::PI * x[0] : thickness;
+      return scene_geometry;
     }
 
     /** True if every cell of the grid is an axis-aligned box. */
@@ -343,6 +327,7 @@ namespace mpm
     std::string                               mesh_file;
     unsigned int                              n_refinements;
     std::map<std::string, types::boundary_id> boundary_names;
+    const Geometry<dim>                       scene_geometry;
 
     parallel::distributed::Triangulation<dim> triangulation;
     std::unique_ptr<Mapping<dim>>             mapping;
@@ -358,10 +343,6 @@ namespace mpm
     /** The hanging vertices of all owned cells, cell after cell. */
     std::vector<HangingVertex> hanging_entries;
     bool                       any_hanging = false;
-    bool                      axisymmetric        = false;
-    bool                      plane_stress        = false;
-    /** The plate's initial thickness in plane stress, 1 otherwise. */
-    double                    thickness           = 1.;
     bool                      all_cells_cartesian = true;
     double                    min_cell_size       = 0.;
   };

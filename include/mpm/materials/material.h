@@ -6,6 +6,7 @@
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
 
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -28,12 +29,21 @@ namespace mpm
     Tensor<2, 3> velocity_gradient;
     double       dt;
     /**
-     * The point's density at the end of the step: its mass over its current
-     * volume, or the density from the point positions ([W] eqs. 12-13) where
-     * a law asks for it. 0: not given; a law that needs it then takes its
-     * own Density over det F_new.
+     * The point's density at the end of the step, its mass over its current
+     * volume. 0: not given; a law that needs it then takes its own Density
+     * over det F_new.
      */
     double density = 0.;
+
+    /** How many grid fields a law may read. */
+    static constexpr unsigned int max_grid_fields = 4;
+
+    /**
+     * The values at the point of the grid fields its law reads
+     * (Material::grid_fields()), in that order, after the nodal solve of
+     * the step.
+     */
+    std::array<double, max_grid_fields> grid_fields{};
   };
 
   /**
@@ -215,13 +225,15 @@ namespace mpm
     }
 
     /**
-     * Whether the law takes the density from the point positions, [W]
-     * eqs. 12-13, instead of mass over current volume.
+     * The names of the grid fields (GridField) the law reads at its points,
+     * StepKinematics::grid_fields in this order: quantities computed on the
+     * grid from all points, such as the density from the point positions,
+     * [W] eqs. 12-13. At most StepKinematics::max_grid_fields.
      */
-    virtual bool
-    needs_density_from_positions() const
+    virtual std::vector<std::string>
+    grid_fields() const
     {
-      return false;
+      return {};
     }
 
   protected:

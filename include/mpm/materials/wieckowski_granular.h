@@ -66,10 +66,13 @@ namespace mpm
       return true;
     }
 
-    bool
-    needs_density_from_positions() const override
+    /** With Density from positions, the grid field of that name. */
+    std::vector<std::string>
+    grid_fields() const override
     {
-      return density_from_positions;
+      if (density_from_positions)
+        return {"Density from positions"};
+      return {};
     }
 
     /** Elastic pressure p0 exp((1 + e0)/kappa (1 - J)). */

@@ -110,7 +110,10 @@ namespace mpm
                   const PointUpdate &update,
                   StepReport &       report);
 
-    /** What must be known before any update_stress() of a pass. */
+    /**
+     * What must be known before any update_stress() of a pass: the grid
+     * fields the laws read, solved; the cells' mean dilatation rates.
+     */
     void
     prepare_stress_update();
 

@@ -74,17 +74,17 @@ namespace mpm
      * otherwise.
      */
     static double
-    hoop_increment(const bool                         axisymmetric,
+    hoop_increment(const Geometry<dim> &               geometry,
                    const Support<dim> &               support,
                    const std::vector<Tensor<1, dim>> &du,
                    const Point<dim> &                 position)
     {
-      if (!axisymmetric)
-        return 1.;
-      double u_r = 0.;
-      for (unsigned int i = 0; i < support.n_nodes; ++i)
-        u_r += support.N[i] * du[i][0];
-      return 1. + u_r / position[0];
+      return 1. + geometry.hoop_ratio(position, [&]() {
+               double u_r = 0.;
+               for (unsigned int i = 0; i < support.n_nodes; ++i)
+                 u_r += support.N[i] * du[i][0];
+               return u_r;
+             });
     }
 
   private:

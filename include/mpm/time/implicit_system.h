@@ -108,11 +108,11 @@ namespace mpm
     {
       using Layout = PointLayout<dim>;
       const Grid<dim> &grid = points.get_grid();
-      return 0.5 * std::pow(Layout::current_volume(p) /
-                              grid.out_of_plane_measure(x) /
-                              (dim == 2 && grid.is_plane_stress() ?
-                                 p[Layout::out_of_plane_stretch] :
-                                 1.),
+      return 0.5 * std::pow(grid.geometry().volume_at_initial_thickness(
+                              Layout::current_volume(p) /
+                                grid.geometry().out_of_plane_measure(x),
+                              dim == 2 ? p[Layout::out_of_plane_stretch] :
+                                         1.),
                             1. / dim);
     }
 
