@@ -76,9 +76,7 @@ test(const bool axisymmetric = false)
   DirichletConditions<dim> dirichlet(prm, grid);
   dirichlet.setup();
   std::vector<std::unique_ptr<Material>> materials;
-  MaterialPoints<dim> points(grid, {"plastic_strain", "volumetric_strain"},
-                             false,
-                             false);
+  MaterialPoints<dim> points(grid, {"plastic_strain", "volumetric_strain"});
   mpm_tests::seed_small_scene(prm, grid, materials, points);
   const Material &law = *materials[0];
 

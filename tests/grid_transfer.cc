@@ -221,7 +221,7 @@ test(const GridShapeFunctions kind)
   // Projection of random masses and momenta, and back.
   {
     std::vector<std::unique_ptr<Material>> materials;
-    MaterialPoints<dim>                    points(grid, {}, false, false);
+    MaterialPoints<dim>                    points(grid, {});
     mpm_tests::seed_small_scene(prm, grid, materials, points);
     // Masses and velocities from the point id, the same on any number of
     // ranks.

@@ -121,7 +121,7 @@ end
     mpm::GridNodes<dim> nodes(grid, field_per_body ? 2 : 1);
     nodes.setup();
     mpm::GridBasis<dim>                          basis(grid);
-    mpm::MaterialPoints<dim>                     points(grid, {}, false, false);
+    mpm::MaterialPoints<dim>                     points(grid, {});
     std::vector<std::unique_ptr<mpm::Material>> materials;
     prm.enter_subsection("material");
     materials.push_back(mpm::Material::create(prm, "steel", "material"));

@@ -132,8 +132,8 @@ test(const std::string &kind)
       [](const auto &cell) { return cell->center()[0] < 0.5 ? 1 : 0; });
 
   std::vector<std::unique_ptr<Material>> materials;
-  MaterialPoints<dim>                    sorted(grid, {}, false, false);
-  MaterialPoints<dim>                    by_dealii(grid, {}, false, false);
+  MaterialPoints<dim>                    sorted(grid, {});
+  MaterialPoints<dim>                    by_dealii(grid, {});
   mpm_tests::seed_small_scene(prm, grid, materials, sorted);
   mpm_tests::seed_small_scene(prm, grid, materials, by_dealii);
   const unsigned int layouts_at_start = sorted.n_pool_layouts();

@@ -130,7 +130,7 @@ namespace mpm_tests
       , dirichlet(prm, created(grid, change_grid))
       , nodes(grid)
       , basis(grid)
-      , points(grid, {}, false, false)
+      , points(grid, {})
       , transfer(points, basis, nodes, {&dirichlet}, gravity)
       , timer(MPI_COMM_WORLD,
               dealii::deallog.get_console(),

@@ -78,6 +78,55 @@ namespace mpm
 
   template <int dim>
   void
+  DirichletConditions<dim>::check_scene(const SceneChoices &choices) const
+  {
+    if (has_contact() && choices.explicit_steps())
+      throw InputError("Boundary conditions/Contact boundaries are handled by "
+                       "the quasi-static and Newmark schemes only; with Time "
+                       "stepping/Scheme = explicit use Fixed, Slip or "
+                       "Friction boundaries.");
+    if (has_end_times() && !choices.explicit_steps())
+      throw InputError("Boundary conditions: a wall that ends ('name until "
+                       "t') needs Time stepping/Scheme = explicit.");
+  }
+
+
+
+  template <int dim>
+  void
+  DirichletConditions<dim>::check_axis() const
+  {
+    // A boundary face on x = 0 lies on the axis: the material there may
+    // move along it but not across it.
+    bool unheld = false;
+    for (const auto &cell : grid.get_triangulation().active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const unsigned int f : cell->face_indices())
+          if (cell->at_boundary(f))
+            {
+              const auto face    = cell->face(f);
+              bool       on_axis = true;
+              for (const unsigned int v : face->vertex_indices())
+                on_axis = on_axis && std::abs(face->vertex(v)[0]) <=
+                                       1e-12 * cell->diameter();
+              const WallKind kind = kind_of(face->boundary_id());
+              if (on_axis &&
+                  ((kind != WallKind::slip && kind != WallKind::fixed) ||
+                   ends(face->boundary_id())))
+                unheld = true;
+            }
+    if (Utilities::MPI::logical_or(unheld, grid.get_communicator()))
+      throw InputError("Grid/Geometry = axisymmetric: the grid's boundary "
+                       "on the axis (x = 0) is not held for the whole "
+                       "run. Name it in Boundary conditions/Slip "
+                       "boundaries (the axis of symmetry: v_r = 0), or in "
+                       "Fixed boundaries, without 'until'.");
+  }
+
+
+
+  template <int dim>
+  void
   DirichletConditions<dim>::find_nodes() const
   {
     const DoFHandler<dim> &dof_handler = grid.node_numbering();

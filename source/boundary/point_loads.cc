@@ -139,6 +139,7 @@ namespace mpm
       throw InputError("Loads: no material point starts inside the region "
                        "between Region lower corner and Region upper "
                        "corner.");
+    const unsigned int point_load = points.slot_index("point_load");
     for (auto &particle : points.handler())
       if (inside(particle.get_location()))
         {
@@ -155,7 +156,7 @@ namespace mpm
                        x;
             }
           for (unsigned int d = 0; d < dim; ++d)
-            p[points.point_load_index() + d] = load[d] * share;
+            p[point_load + d] = load[d] * share;
         }
   }
 

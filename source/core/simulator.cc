@@ -57,14 +57,7 @@ namespace mpm
     LoadBalance<dim>::declare_parameters(prm);
     GridAdaptation<dim>::declare_parameters(prm);
 
-    prm.enter_subsection("Materials");
-    for (const auto &name : names.materials)
-      {
-        prm.enter_subsection(name);
-        Material::declare_parameters(prm);
-        prm.leave_subsection();
-      }
-    prm.leave_subsection();
+    MaterialLibrary::declare_parameters(prm, names.materials);
 
     prm.enter_subsection("Bodies");
     for (const auto &name : names.bodies)
@@ -100,8 +93,8 @@ namespace mpm
     TimerOutput::Scope timer_section(timer, "setup");
 
     gravity = parse_point<dim>(prm.get("Gravity"), "Gravity");
-    const std::string method      = prm.get("Method");
-    const std::string scheme_name = TimeScheme<dim>::scheme_name(prm);
+    const SceneChoices choices{TimeScheme<dim>::scheme_name(prm),
+                               prm.get("Method")};
     // Checked first, before anything is built from them.
     prm.enter_subsection("Time stepping");
     end_time = prm.get_double("End time");
@@ -115,126 +108,59 @@ namespace mpm
     output_directory = prm.get("Directory");
     prm.leave_subsection();
 
-    prm.enter_subsection("Materials");
-    for (const auto &name : names.materials)
-      {
-        prm.enter_subsection(name);
-        materials.push_back(
-          Material::create(prm, name, "Materials/" + name));
-        prm.leave_subsection();
-      }
-    prm.leave_subsection();
-
+    // Each part refuses what it cannot do with the scene's choices as soon
+    // as it is read.
+    material_library = std::make_unique<MaterialLibrary>(prm, names.materials);
+    const std::vector<std::unique_ptr<Material>> &materials =
+      material_library->laws();
     prm.enter_subsection("Bodies");
     for (const auto &name : names.bodies)
       {
         prm.enter_subsection(name);
         bodies.emplace_back(prm, name, "Bodies/" + name, names.materials);
         prm.leave_subsection();
-        if (bodies.back().is_inflow() && scheme_name != "explicit")
-          throw InputError("Bodies/" + name + ": an inflow (First release "
-                           "> 0 or Releases > 1) needs Time stepping/Scheme "
-                           "= explicit.");
+        bodies.back().check_scene(choices);
       }
     prm.leave_subsection();
-    for (const auto &material : materials)
-      for (const std::string &field : material->grid_fields())
-        if (scheme_name != "explicit")
-          throw InputError("Materials/" + material->name() + ": " + field +
-                           " needs Time stepping/Scheme = explicit.");
+    material_library->check_scene(choices);
 
     grid      = std::make_unique<Grid<dim>>(prm, communicator);
     dirichlet = std::make_unique<DirichletConditions<dim>>(prm, *grid);
-    if (dirichlet->has_contact() && scheme_name == "explicit")
-      throw InputError("Boundary conditions/Contact boundaries are handled by "
-                       "the quasi-static and Newmark schemes only; with Time "
-                       "stepping/Scheme = explicit use Fixed, Slip or "
-                       "Friction boundaries.");
+    dirichlet->check_scene(choices);
     friction_walls = std::make_unique<FrictionWalls<dim>>(prm, *grid);
-    if ((dirichlet->has_end_times() || friction_walls->has_end_times()) &&
-        scheme_name != "explicit")
-      throw InputError("Boundary conditions: a wall that ends ('name until "
-                       "t') needs Time stepping/Scheme = explicit.");
-    if (!friction_walls->empty() && method != "MPM")
-      throw InputError("Boundary conditions/Friction boundaries act with "
-                       "Method = MPM; the meshfree methods take Fixed, Slip "
-                       "and Contact boundaries.");
-    using GeometryKind = typename Geometry<dim>::Kind;
-    const GeometryKind geometry = grid->geometry().kind();
-    if (geometry == GeometryKind::axisymmetric && gravity[0] != 0.)
-      throw InputError("Gravity has an x component in an axisymmetric "
-                       "scene, where x is the radius: gravity must act "
-                       "along the axis, y.");
-    for (const auto &material : materials)
-      if (geometry == GeometryKind::plane_stress &&
-          (!material->grid_fields().empty() ||
-           material->stress_follows_density()))
-        throw InputError("Materials/" + material->name() + ": a law whose "
-                         "stress follows the density is for loose fill, "
-                         "not a plate; Grid/Geometry = plane stress takes "
-                         "the other laws.");
+    friction_walls->check_scene(choices);
+    grid->geometry().check_gravity(gravity);
+    material_library->check_geometry(grid->geometry());
     const GridShapeFunctions shape_functions =
       GridBasis<dim>::parse_kind(prm);
-    if (shape_functions != GridShapeFunctions::linear && method != "MPM")
-      throw InputError("Grid/Shape functions = " +
-                       GridBasis<dim>::name(shape_functions) +
-                       " are MPM's; with Method = " + method +
-                       " the shape functions are the meshfree ones (leave "
-                       "Shape functions at linear).");
-    if (geometry == GeometryKind::axisymmetric && method != "MPM")
-      throw InputError("Grid/Geometry = axisymmetric runs with Method = "
-                       "MPM; the meshfree methods are plane strain or 3D "
-                       "only.");
+    GridBasis<dim>::check_scene(choices, shape_functions);
+    MeshfreeBasis<dim>::check_scene(choices, grid->geometry());
     obstacles =
       std::make_unique<RigidObstacles<dim>>(prm, names.obstacles, *grid);
-    if (!obstacles->empty() && scheme_name != "explicit")
-      throw InputError("Obstacles act in the explicit scheme (Time "
-                       "stepping/Scheme = explicit); the quasi-static and "
-                       "Newmark schemes take walls on the grid's "
-                       "boundaries only.");
+    obstacles->check_scene(choices);
 
     // Set up the grid and everything on it (the conditions find their
     // nodes when the grid announces itself).
     grid->create();
-    if (geometry == GeometryKind::axisymmetric)
-      check_axis();
+    if (grid->geometry().kind() == Geometry<dim>::Kind::axisymmetric)
+      dirichlet->check_axis();
     nodes = std::make_unique<GridNodes<dim>>(*grid);
     nodes->setup();
     basis = std::make_unique<GridBasis<dim>>(*grid, shape_functions);
 
-    // Every point carries as many internal variables as the largest law
-    // needs, named after that law. Laws that share a variable keep it at
-    // the same index (plastic_strain first), so every law's list must
-    // start the longest one; the names in the output are then right for
-    // every point.
-    std::vector<std::string> internal_names;
-    std::string              longest;
-    for (const auto &m : materials)
-      if (m->n_internal_variables() > internal_names.size())
-        {
-          internal_names = m->internal_variable_names();
-          longest        = m->name();
-        }
-    for (const auto &m : materials)
-      {
-        const std::vector<std::string> &names = m->internal_variable_names();
-        if (!std::equal(names.begin(), names.end(), internal_names.begin()))
-          throw InputError("Materials '" + m->name() + "' (" +
-                           comma_separated(names) + ") and '" + longest + "' (" +
-                           comma_separated(internal_names) +
-                           ") keep different internal variables, so one "
-                           "scene cannot hold both: the point output would "
-                           "name them wrongly.");
-      }
     loads = std::make_unique<PointLoads<dim>>(prm,
-                                              scheme_name == "quasi-static",
+                                              choices.quasi_static(),
                                               end_time);
+    // Each part asks for the point properties it needs.
+    PointSlots slots;
+    TimeScheme<dim>::request_point_slots(prm, slots);
+    loads->request_point_slots(slots);
+    GridAdaptation<dim>::request_point_slots(prm, slots);
     points = std::make_unique<MaterialPoints<dim>>(
       *grid,
-      internal_names,
-      scheme_name != "explicit",
-      scheme_name != "explicit" || loads->is_active(),
-      GridAdaptation<dim>::measures_plastic_strain_rate(prm));
+      material_library->internal_variable_names(),
+      slots,
+      !choices.explicit_steps());
     points->parse_outflow(prm);
 
     // A grid that follows the material is refined around the bodies before
@@ -261,13 +187,8 @@ namespace mpm
       },
       plastic_law,
       pcout);
-    if (adaptation->enabled() &&
-        (method != "MPM" || shape_functions != GridShapeFunctions::linear))
-      throw InputError("Adaptive grid/Refinement levels or Finer levels > 0 "
-                       "needs Method = "
-                       "MPM and Grid/Shape functions = linear; the meshfree "
-                       "methods and the smooth shape functions take a fixed "
-                       "grid.");
+    adaptation->check_scene(choices,
+                            shape_functions == GridShapeFunctions::linear);
     adaptation->refine_around([this, near_body](const auto &cell) {
       return std::any_of(bodies.begin(),
                          bodies.end(),
@@ -305,34 +226,20 @@ namespace mpm
                                                 *loads,
                                                 pcout,
                                                 timer};
-    if (scheme_name == "explicit")
+    if (choices.explicit_steps())
       {
-        if (method != "MPM")
-          throw InputError("Method = " + method + " runs with Time "
-                           "stepping/Scheme = quasi-static or Newmark; the "
-                           "explicit scheme is MPM only.");
+        ExplicitScheme<dim>::check_scene(choices);
         scheme = std::make_unique<ExplicitScheme<dim>>(prm, scene);
       }
     else
-      {
-        std::unique_ptr<MeshfreeBasis<dim>> meshfree;
-        if (method != "MPM")
-          {
-            meshfree = std::make_unique<MeshfreeBasis<dim>>(
-              MeshfreeBasis<dim>::parse_parameters(
-                prm,
-                method == "GMM-MLS" ? MeshfreeBasis<dim>::Kind::mls :
-                                      MeshfreeBasis<dim>::Kind::lme,
-                grid->minimum_cell_size()));
-          }
-        scheme = std::make_unique<ImplicitScheme<dim>>(prm,
-                                                       scene,
-                                                       scheme_name == "Newmark",
-                                                       *basis,
-                                                       *dirichlet,
-                                                       gravity,
-                                                       std::move(meshfree));
-      }
+      scheme = std::make_unique<ImplicitScheme<dim>>(
+        prm,
+        scene,
+        choices.newmark(),
+        *basis,
+        *dirichlet,
+        gravity,
+        MeshfreeBasis<dim>::create(prm, choices, grid->minimum_cell_size()));
 
     std::error_code error;
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
@@ -378,39 +285,6 @@ namespace mpm
         restarted = true;
       }
     scheme->check_start();
-  }
-
-
-
-  template <int dim>
-  void
-  Simulator<dim>::check_axis() const
-  {
-    // A boundary face on x = 0 lies on the axis: the material there may
-    // move along it but not across it.
-    bool unheld = false;
-    for (const auto &cell : grid->get_triangulation().active_cell_iterators())
-      if (cell->is_locally_owned())
-        for (const unsigned int f : cell->face_indices())
-          if (cell->at_boundary(f))
-            {
-              const auto face    = cell->face(f);
-              bool       on_axis = true;
-              for (const unsigned int v : face->vertex_indices())
-                on_axis = on_axis && std::abs(face->vertex(v)[0]) <=
-                                       1e-12 * cell->diameter();
-              using Kind = typename DirichletConditions<dim>::WallKind;
-              const Kind kind = dirichlet->kind_of(face->boundary_id());
-              if (on_axis && ((kind != Kind::slip && kind != Kind::fixed) ||
-                              dirichlet->ends(face->boundary_id())))
-                unheld = true;
-            }
-    if (Utilities::MPI::logical_or(unheld, communicator))
-      throw InputError("Grid/Geometry = axisymmetric: the grid's boundary "
-                       "on the axis (x = 0) is not held for the whole "
-                       "run. Name it in Boundary conditions/Slip "
-                       "boundaries (the axis of symmetry: v_r = 0), or in "
-                       "Fixed boundaries, without 'until'.");
   }
 
 
@@ -549,7 +423,11 @@ namespace mpm
         {
           TimerOutput::Scope t(timer, "inflow");
           if (seeder->release_due(
-                bodies, materials, *points, time, time_tolerance))
+                bodies,
+                material_library->laws(),
+                *points,
+                time,
+                time_tolerance))
             scheme->points_added();
           scheme->end_next_step_by(seeder->next_release_time(bodies));
         }

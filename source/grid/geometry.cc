@@ -70,6 +70,18 @@ namespace mpm
 
 
   template <int dim>
+  void
+  Geometry<dim>::check_gravity(const Tensor<1, dim> &gravity) const
+  {
+    if (geometry_kind == Kind::axisymmetric && gravity[0] != 0.)
+      throw InputError("Gravity has an x component in an axisymmetric "
+                       "scene, where x is the radius: gravity must act "
+                       "along the axis, y.");
+  }
+
+
+
+  template <int dim>
   std::string
   Geometry<dim>::name() const
   {

@@ -73,15 +73,17 @@ namespace mpm
 
 
   template <int dim>
-  bool
-  GridAdaptation<dim>::measures_plastic_strain_rate(ParameterHandler &prm)
+  void
+  GridAdaptation<dim>::request_point_slots(ParameterHandler &prm,
+                                           PointSlots &      slots)
   {
     prm.enter_subsection("Adaptive grid");
     const std::string where = prm.get("Finer where");
     const bool        rate  = where.find("plastic flow") != std::string::npos &&
                       prm.get_integer("Finer levels") > 0;
     prm.leave_subsection();
-    return rate;
+    if (rate)
+      slots.request("plastic_strain_at_last_check", 1, false);
   }
 
 
@@ -225,8 +227,9 @@ namespace mpm
     const ArrayView<const double> p = point.get_properties();
     if (!plastic_law[static_cast<unsigned int>(p[Layout::material_id])])
       return false;
-    const double growth = p[Layout::internal_variables] -
-                          p[points.plastic_strain_record_index()];
+    const double growth =
+      p[Layout::internal_variables] -
+      p[points.slot_index("plastic_strain_at_last_check")];
     return growth > finer_plastic_strain_rate * (time - last_record_time);
   }
 
@@ -239,7 +242,8 @@ namespace mpm
     if (finer_plastic_strain_rate == 0.)
       return;
     using Layout = PointLayout<dim>;
-    const unsigned int record = points.plastic_strain_record_index();
+    const unsigned int record =
+      points.slot_index("plastic_strain_at_last_check");
     for (auto &point : points.handler())
       {
         const ArrayView<double> p = point.get_properties();

@@ -57,22 +57,19 @@ namespace mpm
   MaterialPoints<dim>::MaterialPoints(
     const Grid<dim> &               grid,
     const std::vector<std::string> &internal_variable_names,
-    const bool                      implicit_steps,
-    const bool                      point_loads,
-    const bool                      plastic_strain_record)
+    const PointSlots &              slots,
+    const bool                      far_moves)
     : grid(grid)
     , triangulation(grid.get_triangulation())
     , mapping(grid.get_mapping())
     , particle_handler(triangulation,
                        mapping,
                        Layout::n_properties(internal_variable_names.size()) +
-                         (implicit_steps ? dim : 0) + (point_loads ? dim : 0) +
-                         (plastic_strain_record ? 1 : 0))
+                         slots.n_components_total())
     , cell_cache(triangulation, mapping)
     , internal_names(internal_variable_names)
-    , implicit_steps(implicit_steps)
-    , point_loads(point_loads)
-    , plastic_strain_record(plastic_strain_record)
+    , slots(slots)
+    , far_moves(far_moves)
   {
     particle_handler.signals.particle_lost.connect(
       [this](const typename Particles::ParticleIterator<dim> &particle,
@@ -112,14 +109,8 @@ namespace mpm
     std::copy(internal_names.begin(),
               internal_names.end(),
               names.begin() + Layout::internal_variables);
-    if (implicit_steps)
-      for (unsigned int d = 0; d < dim; ++d)
-        names.emplace_back("acceleration");
-    if (point_loads)
-      for (unsigned int d = 0; d < dim; ++d)
-        names.emplace_back("point_load");
-    if (plastic_strain_record)
-      names.emplace_back("plastic_strain_at_last_check");
+    for (const PointSlots::Slot &slot : slots.all())
+      names.insert(names.end(), slot.n_components, slot.name);
     return names;
   }
 
@@ -131,10 +122,9 @@ namespace mpm
   {
     std::vector<unsigned int> vectors = {Layout::reference_size,
                                          Layout::velocity};
-    if (implicit_steps)
-      vectors.push_back(acceleration_index());
-    if (point_loads)
-      vectors.push_back(point_load_index());
+    for (const PointSlots::Slot &slot : slots.all())
+      if (slot.is_vector)
+        vectors.push_back(slot_index(slot.name));
     return vectors;
   }
 
@@ -235,7 +225,7 @@ namespace mpm
     const types::particle_index n_before = Utilities::MPI::sum(
       particle_handler.n_locally_owned_particles(), comm);
     const types::particle_index removed_before = removed_points();
-    if (implicit_steps)
+    if (far_moves)
       carry_far_points();
     if (!sort_within_rank())
       {

@@ -49,6 +49,7 @@ namespace mpm
     bool   out_of_plane_failed   = false;
     const Geometry<dim> &geometry     = points.get_grid().geometry();
     const bool           plane_stress = geometry.free_faces();
+    const unsigned int   point_load   = points.slot_index("point_load");
 
     FullMatrix<double>          cell_tangent;
     Vector<double>              cell_residual, cell_external;
@@ -124,7 +125,7 @@ namespace mpm
                 {
                   const double external =
                     load_factor * support.N[i] *
-                    (p[points.point_load_index() + a] +
+                    (p[point_load + a] +
                      p[Layout::mass] * gravity[a]);
                   cell_external(i * dim + a) += external;
                   cell_residual(i * dim + a) +=

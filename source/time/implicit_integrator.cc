@@ -175,7 +175,8 @@ namespace mpm
   void
   ImplicitIntegrator<dim>::update_points()
   {
-    using Layout = PointLayout<dim>;
+    using Layout                    = PointLayout<dim>;
+    const unsigned int acceleration = points.slot_index("acceleration");
     std::vector<Tensor<1, dim>> du, v_n, a_n;
     for (const auto &group : state.groups)
       {
@@ -226,7 +227,7 @@ namespace mpm
                 for (unsigned int d = 0; d < dim; ++d)
                   {
                     p[Layout::velocity + d] += dv[d];
-                    p[points.acceleration_index() + d] = a_new[d];
+                    p[acceleration + d] = a_new[d];
                   }
               }
             particle->set_location(particle->get_location() +

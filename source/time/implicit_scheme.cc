@@ -90,7 +90,7 @@ namespace mpm
                              transfer.field_of(particle->get_properties()),
                              GridNodes<dim>::NodalLayout::force);
       for (unsigned int d = 0; d < dim; ++d)
-        particle->get_properties()[points.acceleration_index() + d] = a[d];
+        particle->get_properties()[points.slot_index("acceleration") + d] = a[d];
     });
   }
 

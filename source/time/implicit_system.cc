@@ -7,6 +7,7 @@ namespace mpm
   ImplicitSystem<dim>::project_initial_conditions(ImplicitState<dim> &state)
   {
     using Layout        = PointLayout<dim>;
+    const unsigned int acceleration = points.slot_index("acceleration");
     const MPI_Comm comm = points.get_communicator();
     state.projected_velocity.reinit(state.owned_dofs, comm);
     state.projected_acceleration.reinit(state.owned_dofs, comm);
@@ -30,7 +31,7 @@ namespace mpm
                 mass(dof) += Nm;
                 momentum(dof) += Nm * p[Layout::velocity + a];
                 mass_acceleration(dof) +=
-                  Nm * p[points.acceleration_index() + a];
+                  Nm * p[acceleration + a];
               }
         }
     mass.compress(VectorOperation::add);

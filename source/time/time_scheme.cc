@@ -43,6 +43,19 @@ namespace mpm
 
 
   template <int dim>
+  void
+  TimeScheme<dim>::request_point_slots(ParameterHandler &prm,
+                                       PointSlots &      slots)
+  {
+    if (scheme_name(prm) == "explicit")
+      return;
+    slots.request("acceleration", dim, true);
+    slots.request("point_load", dim, true);
+  }
+
+
+
+  template <int dim>
   std::string
   TimeScheme<dim>::time_stepping_entry(ParameterHandler & prm,
                                        const std::string &entry)

@@ -6,6 +6,8 @@
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
+#include <mpm/base/input_error.h>
+#include <mpm/base/scene_choices.h>
 #include <mpm/basis/node_lattice.h>
 #include <mpm/basis/support.h>
 #include <mpm/grid/grid.h>
@@ -83,6 +85,20 @@ namespace mpm
     /** The prm name of a kind. */
     static std::string
     name(const GridShapeFunctions kind);
+
+    /**
+     * The grid's shape functions other than linear are MPM's: the meshfree
+     * methods take their own (InputError).
+     */
+    static void
+    check_scene(const SceneChoices &choices, const GridShapeFunctions kind)
+    {
+      if (kind != GridShapeFunctions::linear && choices.meshfree())
+        throw InputError("Grid/Shape functions = " + name(kind) +
+                         " are MPM's; with Method = " + choices.method +
+                         " the shape functions are the meshfree ones (leave "
+                         "Shape functions at linear).");
+    }
 
     /**
      * Shape functions of `kind` on `grid`; a smooth kind refuses a grid

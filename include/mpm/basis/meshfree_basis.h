@@ -5,7 +5,10 @@
 #include <deal.II/base/point.h>
 #include <deal.II/numerics/rtree.h>
 
+#include <mpm/base/input_error.h>
+#include <mpm/base/scene_choices.h>
 #include <mpm/basis/support.h>
+#include <mpm/grid/geometry.h>
 
 #include <memory>
 #include <string>
@@ -72,11 +75,38 @@ namespace mpm
     static void
     declare_parameters(ParameterHandler &prm);
 
+    /**
+     * The meshfree methods are plane strain or 3D only (InputError for an
+     * axisymmetric scene).
+     */
+    static void
+    check_scene(const SceneChoices &choices, const Geometry<dim> &geometry)
+    {
+      if (choices.meshfree() &&
+          geometry.kind() == Geometry<dim>::Kind::axisymmetric)
+        throw InputError("Grid/Geometry = axisymmetric runs with Method = "
+                         "MPM; the meshfree methods are plane strain or 3D "
+                         "only.");
+    }
+
     /** Read subsection "Meshfree"; `kind` comes from the Method entry. */
     static Settings
     parse_parameters(ParameterHandler &prm, const Kind kind, const double h);
 
     explicit MeshfreeBasis(const Settings &settings);
+
+    /**
+     * The basis of the scene's Method (GMM-MLS, GMM-LME), from subsection
+     * "Meshfree" and the grid's smallest cell edge h; none for MPM.
+     */
+    static std::unique_ptr<MeshfreeBasis<dim>>
+    create(ParameterHandler &prm, const SceneChoices &choices, const double h)
+    {
+      if (!choices.meshfree())
+        return nullptr;
+      return std::make_unique<MeshfreeBasis<dim>>(parse_parameters(
+        prm, choices.method == "GMM-MLS" ? Kind::mls : Kind::lme, h));
+    }
 
     MeshfreeBasis(const MeshfreeBasis &) = delete;
     MeshfreeBasis &

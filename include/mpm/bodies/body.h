@@ -6,6 +6,8 @@
 #include <deal.II/base/point.h>
 #include <deal.II/base/quadrature.h>
 
+#include <mpm/base/input_error.h>
+#include <mpm/base/scene_choices.h>
 #include <mpm/base/shape.h>
 
 #include <memory>
@@ -121,6 +123,16 @@ namespace mpm
     is_inflow() const
     {
       return n_releases > 1 || first_release > 0.;
+    }
+
+    /** An inflow needs the explicit scheme (InputError). */
+    void
+    check_scene(const SceneChoices &choices) const
+    {
+      if (is_inflow() && !choices.explicit_steps())
+        throw InputError("Bodies/" + body_name + ": an inflow (First release "
+                         "> 0 or Releases > 1) needs Time stepping/Scheme "
+                         "= explicit.");
     }
 
     /** Whether the body starts under geostatic stress. */

@@ -4,6 +4,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/tensor.h>
 
+#include <mpm/base/scene_choices.h>
 #include <mpm/boundary/nodal_condition.h>
 #include <mpm/grid/grid.h>
 
@@ -45,6 +46,21 @@ namespace mpm
      * calls setup() (also when the grid is first created).
      */
     DirichletConditions(ParameterHandler &prm, const Grid<dim> &grid);
+
+    /**
+     * Contact walls need an implicit scheme, walls that end the explicit
+     * one (InputError).
+     */
+    void
+    check_scene(const SceneChoices &choices) const;
+
+    /**
+     * An axisymmetric grid's boundary on x = 0 must be held across the
+     * axis for the whole run (a Slip or Fixed boundary without 'until');
+     * the message says so if it is not. Collective.
+     */
+    void
+    check_axis() const;
 
     /** Find the constrained nodes of all locally relevant cells. */
     void

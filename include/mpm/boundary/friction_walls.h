@@ -4,6 +4,8 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/tensor.h>
 
+#include <mpm/base/input_error.h>
+#include <mpm/base/scene_choices.h>
 #include <mpm/boundary/rigid_contact.h>
 #include <mpm/grid/grid.h>
 
@@ -65,6 +67,22 @@ namespace mpm
         if (wall.until < std::numeric_limits<double>::infinity())
           return true;
       return false;
+    }
+
+    /**
+     * Walls that end need the explicit scheme; friction walls act with MPM
+     * (InputError).
+     */
+    void
+    check_scene(const SceneChoices &choices) const
+    {
+      if (has_end_times() && !choices.explicit_steps())
+        throw InputError("Boundary conditions: a wall that ends ('name until "
+                         "t') needs Time stepping/Scheme = explicit.");
+      if (!empty() && choices.meshfree())
+        throw InputError("Boundary conditions/Friction boundaries act with "
+                         "Method = MPM; the meshfree methods take Fixed, "
+                         "Slip and Contact boundaries.");
     }
 
     /** Find each wall's nodes, their normals and their shares of it. */

@@ -36,6 +36,14 @@ namespace mpm
      */
     PointLoads(ParameterHandler &prm, bool ramped, double end_time);
 
+    /** With a load, the points carry it: the slot "point_load". */
+    void
+    request_point_slots(PointSlots &slots) const
+    {
+      if (active)
+        slots.request("point_load", dim, true);
+    }
+
     /** Whether the scene has a load. */
     bool
     is_active() const

@@ -5,6 +5,8 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/tensor.h>
 
+#include <mpm/base/input_error.h>
+#include <mpm/base/scene_choices.h>
 #include <mpm/base/shape.h>
 #include <mpm/boundary/rigid_contact.h>
 #include <mpm/grid/grid.h>
@@ -52,6 +54,17 @@ namespace mpm
     empty() const
     {
       return obstacles.empty();
+    }
+
+    /** Obstacles act in the explicit scheme (InputError). */
+    void
+    check_scene(const SceneChoices &choices) const
+    {
+      if (!empty() && !choices.explicit_steps())
+        throw InputError("Obstacles act in the explicit scheme (Time "
+                         "stepping/Scheme = explicit); the quasi-static and "
+                         "Newmark schemes take walls on the grid's "
+                         "boundaries only.");
     }
 
     /**

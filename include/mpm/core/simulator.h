@@ -19,6 +19,7 @@
 #include <mpm/bodies/point_seeder.h>
 #include <mpm/grid/grid.h>
 #include <mpm/materials/material.h>
+#include <mpm/materials/material_library.h>
 #include <mpm/output/time_series.h>
 #include <mpm/output/vtu_output.h>
 #include <mpm/points/grid_adaptation.h>
@@ -107,13 +108,6 @@ namespace mpm
     report_progress(const bool force);
 
     /**
-     * An axisymmetric grid's boundary on x = 0 must be held across the
-     * axis (a Slip or Fixed boundary); the message says so if it is not.
-     */
-    void
-    check_axis() const;
-
-    /**
      * The output of the current state: points, grid (and the node cloud)
      * for ParaView, if written, and the walls' tractions.
      */
@@ -135,7 +129,7 @@ namespace mpm
     std::string                               output_directory;
     /** Everything that acts at the grid's nodes, in the order it acts. */
     std::vector<const NodalCondition<dim> *>  nodal_conditions;
-    std::vector<std::unique_ptr<Material>>    materials;
+    std::unique_ptr<MaterialLibrary>          material_library;
     std::vector<Body<dim>>                    bodies;
     std::unique_ptr<MaterialPoints<dim>>      points;
     std::unique_ptr<PointSeeder<dim>>         seeder;

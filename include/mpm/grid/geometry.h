@@ -46,6 +46,13 @@ namespace mpm
       return geometry_kind;
     }
 
+    /**
+     * In an axisymmetric scene gravity acts along the axis, y (InputError
+     * otherwise).
+     */
+    void
+    check_gravity(const Tensor<1, dim> &gravity) const;
+
     /** The prm name of the geometry, for messages. */
     std::string
     name() const;

@@ -5,6 +5,8 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/grid/cell_id.h>
 
+#include <mpm/base/input_error.h>
+#include <mpm/base/scene_choices.h>
 #include <mpm/base/shape.h>
 #include <mpm/grid/grid.h>
 #include <mpm/points/material_points.h>
@@ -67,12 +69,12 @@ namespace mpm
       const typename Triangulation<dim>::active_cell_iterator &)>;
 
     /**
-     * Whether a scene's points must keep their plastic strain at the last
-     * check (`Finer where` names the plastic strain rate), so that
-     * MaterialPoints gives them a slot for it.
+     * Where `Finer where` names the plastic strain rate, the points keep
+     * their plastic strain at the last check: the slot
+     * "plastic_strain_at_last_check" (the handler is at top level).
      */
-    static bool
-    measures_plastic_strain_rate(ParameterHandler &prm);
+    static void
+    request_point_slots(ParameterHandler &prm, PointSlots &slots);
 
     /**
      * Parse the `Adaptive grid` subsection (the handler is at top level).
@@ -87,6 +89,21 @@ namespace mpm
                    const Occupied &           reserved,
                    const std::vector<bool> &  plastic_law,
                    ConditionalOStream &       pcout);
+
+    /**
+     * The grid adapts with MPM's linear shape functions only (InputError
+     * otherwise).
+     */
+    void
+    check_scene(const SceneChoices &choices,
+                const bool          linear_shape_functions) const
+    {
+      if (enabled() && (choices.meshfree() || !linear_shape_functions))
+        throw InputError("Adaptive grid/Refinement levels or Finer levels > "
+                         "0 needs Method = MPM and Grid/Shape functions = "
+                         "linear; the meshfree methods and the smooth shape "
+                         "functions take a fixed grid.");
+    }
 
     /** Whether the grid adapts (Refinement levels or Finer levels > 0). */
     bool

@@ -12,6 +12,7 @@
 
 #include <mpm/grid/grid.h>
 #include <mpm/points/point_layout.h>
+#include <mpm/points/point_slots.h>
 
 #include <memory>
 #include <vector>
@@ -34,17 +35,14 @@ namespace mpm
 
     /**
      * `internal_variable_names`: the internal variables every point
-     * carries, named for the output. After them, with `implicit_steps`
-     * (the implicit schemes, whose points may move more than a cell in a
-     * step) an acceleration, with `point_loads` a point load, and with
-     * `plastic_strain_record` the plastic strain at the adaptive grid's
-     * last check (GridAdaptation).
+     * carries, named for the output; after them the slots that the scene's
+     * parts asked for. With `far_moves` (the implicit schemes) a step may
+     * carry a point beyond the cells next to its old one.
      */
     MaterialPoints(const Grid<dim> &               grid,
                    const std::vector<std::string> &internal_variable_names,
-                   const bool                      implicit_steps,
-                   const bool                      point_loads,
-                   const bool plastic_strain_record = false);
+                   const PointSlots &              slots     = {},
+                   const bool                      far_moves = false);
 
     /** `Boundary conditions/Outflow boundaries`. */
     static void
@@ -138,37 +136,19 @@ namespace mpm
       return internal_names.size();
     }
 
-    /** Whether the points carry a force at full load. */
+    /** Whether the points carry the slot of that name (PointSlots). */
     bool
-    has_point_loads() const
+    has_slot(const std::string &name) const
     {
-      return point_loads;
+      return slots.has(name);
     }
 
-    /** Index of the acceleration (implicit steps only). */
+    /** The index of the first component of a slot in a point's properties. */
     unsigned int
-    acceleration_index() const
+    slot_index(const std::string &name) const
     {
-      Assert(implicit_steps, ExcInternalError());
-      return Layout::internal_variables + n_internal_variables();
-    }
-
-    /** Index of the force at full load (point loads only). */
-    unsigned int
-    point_load_index() const
-    {
-      Assert(point_loads, ExcInternalError());
       return Layout::internal_variables + n_internal_variables() +
-             (implicit_steps ? dim : 0);
-    }
-
-    /** Index of the plastic strain at the last check (if recorded). */
-    unsigned int
-    plastic_strain_record_index() const
-    {
-      Assert(plastic_strain_record, ExcInternalError());
-      return Layout::internal_variables + n_internal_variables() +
-             (implicit_steps ? dim : 0) + (point_loads ? dim : 0);
+             slots.find(name).offset;
     }
 
     /** Names of all properties, for output; vectors repeat their name. */
@@ -264,9 +244,8 @@ namespace mpm
     /** Finds the cell of a point that moved far (implicit runs). */
     GridTools::Cache<dim> cell_cache;
     const std::vector<std::string>  internal_names;
-    const bool                      implicit_steps;
-    const bool                      point_loads;
-    const bool                      plastic_strain_record;
+    const PointSlots                slots;
+    const bool                      far_moves;
 
     /** Filled by the particle_lost signal during a sort. */
     std::vector<Point<dim>> lost_positions;

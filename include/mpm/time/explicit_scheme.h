@@ -1,6 +1,8 @@
 #ifndef mpm_time_explicit_scheme_h
 #define mpm_time_explicit_scheme_h
 
+#include <mpm/base/input_error.h>
+#include <mpm/base/scene_choices.h>
 #include <mpm/time/explicit_integrator.h>
 #include <mpm/time/time_scheme.h>
 
@@ -21,6 +23,16 @@ namespace mpm
   class ExplicitScheme : public TimeScheme<dim>
   {
   public:
+    /** The explicit scheme is MPM only (InputError for a meshfree method). */
+    static void
+    check_scene(const SceneChoices &choices)
+    {
+      if (choices.meshfree())
+        throw InputError("Method = " + choices.method + " runs with Time "
+                         "stepping/Scheme = quasi-static or Newmark; the "
+                         "explicit scheme is MPM only.");
+    }
+
     /** `CFL number`, `Update scheme` and `PIC fraction`. */
     static void
     declare_parameters(ParameterHandler &prm);

@@ -61,6 +61,14 @@ namespace mpm
     static std::string
     scheme_name(ParameterHandler &prm);
 
+    /**
+     * The point properties the scene's scheme needs, before the points are
+     * built: the implicit schemes keep each point's acceleration and load
+     * (the slots "acceleration" and "point_load").
+     */
+    static void
+    request_point_slots(ParameterHandler &prm, PointSlots &slots);
+
     virtual ~TimeScheme() = default;
 
     /** Simulated time at which the run ends. */
