@@ -17,6 +17,9 @@ namespace mpm
     , nodes(nodes)
     , conditions(conditions)
     , gravity(gravity)
+    , point_load(points.has_slot("point_load") ?
+                   points.slot_index("point_load") :
+                   numbers::invalid_unsigned_int)
     , field_of_body(field_of_body)
   {
     for (const unsigned int field : field_of_body)

@@ -391,6 +391,8 @@ namespace mpm
     GridNodes<dim> &                nodes;
     const std::vector<const NodalCondition<dim> *> conditions;
     const Tensor<1, dim>                           gravity;
+    /** The index of the points' load (PointSlots "point_load"), if any. */
+    const unsigned int                             point_load;
     /** By body id; empty: one field. */
     const std::vector<unsigned int>                field_of_body;
     double                                         load_factor = 1.;
@@ -433,9 +435,9 @@ namespace mpm
       points.get_grid().geometry().hoop_radius(x));
     const std::vector<double> &internal = scratch.force;
     Tensor<1, dim>             external = m * gravity;
-    if (points.has_point_loads())
+    if (point_load != numbers::invalid_unsigned_int)
       for (unsigned int d = 0; d < dim; ++d)
-        external[d] += p[points.point_load_index() + d];
+        external[d] += p[point_load + d];
     external *= load_factor;
     for (unsigned int i = 0; i < support.n_nodes; ++i)
       {
