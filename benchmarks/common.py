@@ -4,6 +4,11 @@ Each benchmark runs the mpm executable of an existing build (MPM_BUILD, or
 build/ at the top of the repository), times every run in the same process
 that measures its error, writes results.csv and PNG plots next to its run
 script, and ends its printed table with a line 'SUMMARY key=value ...'.
+
+With --quick a benchmark runs its scenes on coarse grids for short times,
+writes under <MPM_BUILD>/benchmarks/<name>/ (output_dir), checks its key
+figures against plausible ranges (quick_check) and exits with status 1 if
+one is out of range or an mpm run failed (finish_quick).
 """
 import csv
 import os
@@ -14,12 +19,91 @@ import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
+# The script's start, for the wall time a quick mode prints.
+START = time.perf_counter()
+
+
+def quick():
+    """Whether the benchmark runs in its quick mode (--quick): its scenes
+    through the same code paths on coarse grids and short times, with
+    plausibility checks (quick_check) that fail the run (finish_quick)."""
+    return "--quick" in sys.argv[1:]
+
+
+def build_directory():
+    return os.path.abspath(os.environ.get("MPM_BUILD",
+                                          os.path.join(ROOT, "build")))
+
+
+def output_dir(here):
+    """Where a benchmark writes its results, figures and run directories:
+    its own folder (here), or under --quick <MPM_BUILD>/benchmarks/<name>/
+    (created), so that a quick run leaves the records and figures of the
+    full runs alone."""
+    if not quick():
+        return here
+    path = os.path.join(build_directory(), "benchmarks",
+                        os.path.basename(os.path.normpath(here)))
+    os.makedirs(path, exist_ok=True)
+    return path
+
+
+# The quick mode's checks: (name, passed), in order.
+QUICK_CHECKS = []
+
+
+def quick_check(name, value, lo, hi):
+    """One plausibility check of a quick mode: prints
+    'QUICK CHECK name: value in [lo, hi]: ok|FAILED' and records it for
+    finish_quick. A NaN (or None) value fails."""
+    try:
+        number = float(value)
+        passed = lo <= number <= hi
+    except (TypeError, ValueError):
+        number, passed = float("nan"), False
+    QUICK_CHECKS.append((name, passed))
+    print("QUICK CHECK %s: %.6g in [%.6g, %.6g]: %s"
+          % (name, number, lo, hi, "ok" if passed else "FAILED"), flush=True)
+    return passed
+
+
+def finish_quick():
+    """End of a quick mode: exit with status 1 if a check failed or an mpm
+    run exited non-zero (run_mpm records that as a failed check). Nothing
+    outside the quick mode."""
+    if not quick():
+        return
+    failed = [name for name, passed in QUICK_CHECKS if not passed]
+    if failed:
+        sys.stderr.write("quick mode FAILED (%d of %d checks): %s\n"
+                         % (len(failed), len(QUICK_CHECKS),
+                            "; ".join(failed)))
+        sys.exit(1)
+
+
+DEBIAN_PYTHON_PACKAGES = "/usr/lib/python3/dist-packages"
+
+
+def import_matplotlib():
+    """Import matplotlib, also from Debian's python3 packages, which a
+    python3 of the same version that is not Debian's (pyenv's, say) does
+    not search."""
+    try:
+        import matplotlib
+    except ImportError:
+        import importlib
+        importlib.invalidate_caches()
+        if os.path.isdir(DEBIAN_PYTHON_PACKAGES) and \
+                DEBIAN_PYTHON_PACKAGES not in sys.path:
+            sys.path.append(DEBIAN_PYTHON_PACKAGES)
+        import matplotlib
+    return matplotlib
 
 
 def ensure_matplotlib():
     """Import matplotlib (Agg); install Debian's package if it is missing."""
     try:
-        import matplotlib
+        matplotlib = import_matplotlib()
     except ImportError:
         if os.geteuid() != 0:
             sys.exit("benchmark: needs python3-matplotlib "
@@ -27,7 +111,7 @@ def ensure_matplotlib():
         subprocess.run(["apt-get", "install", "-y", "-qq",
                         "python3-matplotlib"], check=True,
                        env=dict(os.environ, DEBIAN_FRONTEND="noninteractive"))
-        import matplotlib
+        matplotlib = import_matplotlib()
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     return plt
@@ -112,9 +196,13 @@ def run_mpm(prm, settings, directory, ranks=1, restart=False):
     result = subprocess.run(command, capture_output=True, text=True, env=env)
     wall = time.perf_counter() - start
     if result.returncode != 0:
-        raise RunFailed(result.stderr.strip().splitlines()[-1]
-                        if result.stderr.strip() else "exit code %d"
-                        % result.returncode, result.stdout)
+        last_words = result.stderr.strip().splitlines()[-1] \
+            if result.stderr.strip() else "exit code %d" % result.returncode
+        if quick():
+            quick_check("mpm exit status of %s (%s)" % (os.path.basename(
+                os.path.normpath(directory)), last_words),
+                result.returncode, 0, 0)
+        raise RunFailed(last_words, result.stdout)
     return wall, result.stdout, read_csv(os.path.join(directory,
                                                       "time_series.csv"))
 
@@ -193,8 +281,19 @@ def summary(**pairs):
     unless the benchmark says so itself."""
     if "shape_functions" not in pairs and BASES_USED:
         pairs = dict(shape_functions=bases_text(BASES_USED), **pairs)
+    if quick():
+        pairs = dict(pairs, quick=1)
+        print_quick_wall_time()
     print("SUMMARY " + " ".join("%s=%s" % (k, fmt(v))
                                 for k, v in pairs.items()))
+
+
+def print_quick_wall_time():
+    """The quick mode's wall time so far and its checks, printed before
+    its SUMMARY line."""
+    print("QUICK wall time %.1f s, %d checks, %d failed"
+          % (time.perf_counter() - START, len(QUICK_CHECKS),
+             sum(1 for _, passed in QUICK_CHECKS if not passed)), flush=True)
 
 
 def newton_counts(stdout):
