@@ -61,7 +61,8 @@ namespace mpm
     prm.enter_subsection("Newton");
     scale_full_cells = prm.get("Integration") == "full cells by cell volume";
     prm.leave_subsection();
-    fe_collection.push_back(FESystem<dim>(FE_Q<dim>(1), dim));
+    // The basis's nodes carry the displacement; cells without points none.
+    fe_collection.push_back(FESystem<dim>(*basis.node_element(), dim));
     fe_collection.push_back(FESystem<dim>(FE_Nothing<dim>(), dim));
     const auto coordinates = [&grid](const unsigned int node) {
       std::array<double, 3> x = {};

@@ -8,6 +8,8 @@
 
 #include <mpm/base/input_error.h>
 #include <mpm/base/scene_choices.h>
+#include <mpm/basis/grid_functions.h>
+#include <mpm/basis/linear_functions.h>
 #include <mpm/basis/node_lattice.h>
 #include <mpm/basis/support.h>
 #include <mpm/grid/grid.h>
@@ -37,43 +39,18 @@ namespace mpm
 
   /**
    * The shape functions of MPM on the background grid, evaluated at a
-   * material point: a Support for the assembly, whatever the kind.
-   *
-   * - linear (Q1): the nodes of the point's cell, from its reference
-   *   coordinates and the Grid's cached cell geometry in a few dozen
-   *   flops: tensor-product values, gradients through the inverse Jacobian
-   *   of the bilinear (trilinear) cell map, which is diagonal on
-   *   axis-aligned cells. Any grid.
-   * - uGIMP, cpGIMP (Bardenhagen and Kober 2004; Wallstedt and Guilkey
-   *   2008): the hat functions averaged over the point's domain, a box of
-   *   half-width l_d = min(size_d / 2, h_d / 2) per direction (size: the
-   *   box the point stood for when seeded; cpGIMP stretches it by F_dd);
-   *   value (1 / 2l) int N dx and gradient (N(x + l) - N(x - l)) / 2l. Next
-   *   to a grid face the first cell's linear functions go on beyond it, so
-   *   a domain that reaches out still sees a partition of unity that
-   *   reproduces linear fields.
-   * - quadratic B-splines, one per node, C1 across cell faces; in the half
-   *   cell next to a grid face the two nearest nodes' functions are linear
-   *   (1 - s and s), which joins the quadratics with continuous values and
-   *   slopes, keeps the partition of unity and linear reproduction, and
-   *   makes the face node interpolate (N = 1 on the face), so walls hold
-   *   nodes as they do with Q1.
-   *
-   * On an adaptive grid the linear functions are those of the conforming
-   * grid: a vertex that hangs on a coarser neighbour's face passes its
-   * value to that face's nodes (Grid::hanging_vertices), so a point's
-   * support may reach nodes of the coarser cell.
-   *
-   * The smooth kinds reach the nodes of the cells around the point's cell
-   * (at most 3 per direction) and need a grid of equal axis-aligned cells
-   * filling a box (NodeLattice).
+   * material point: a Support for the assembly, whatever the kind. Each
+   * kind is a class of its own behind the interface GridFunctions:
+   * LinearFunctions (Q1, any grid), GimpFunctions (uGIMP, cpGIMP) and
+   * BsplineFunctions (quadratic B-splines), the smooth ones on the grid's
+   * NodeLattice. This class parses the kind, builds it, and calls Q1
+   * directly (the most used kind, whose evaluation is a few dozen flops)
+   * and the others through the interface.
    */
   template <int dim>
   class GridBasis
   {
   public:
-    static constexpr unsigned int n_vertices = Grid<dim>::n_vertices;
-
     /** `Grid/Shape functions`. */
     static void
     declare_parameters(ParameterHandler &prm);
@@ -108,6 +85,11 @@ namespace mpm
                        const GridShapeFunctions kind =
                          GridShapeFunctions::linear);
 
+    /** It points into itself (linear). */
+    GridBasis(const GridBasis &) = delete;
+    GridBasis &
+    operator=(const GridBasis &) = delete;
+
     GridShapeFunctions
     kind() const
     {
@@ -118,15 +100,15 @@ namespace mpm
     const NodeLattice<dim> &
     node_lattice() const
     {
-      Assert(lattice, ExcInternalError());
-      return *lattice;
+      Assert(functions && functions->lattice(), ExcInternalError());
+      return *functions->lattice();
     }
 
     /** Whether a point's support reaches beyond its cell. */
     bool
     reaches_neighbours() const
     {
-      return shape_functions != GridShapeFunctions::linear;
+      return linear == nullptr && functions->reaches_neighbours();
     }
 
     /**
@@ -139,13 +121,10 @@ namespace mpm
              const ArrayView<const double> &p,
              Support<dim> &                 support) const
     {
-      if (shape_functions == GridShapeFunctions::linear)
-        evaluate_linear(active_cell_index, reference_point, support);
+      if (linear != nullptr)
+        linear->evaluate(active_cell_index, reference_point, p, support);
       else
-        evaluate_smooth(active_cell_index,
-                        reference_point,
-                        domain_half_width(p),
-                        support);
+        functions->evaluate(active_cell_index, reference_point, p, support);
     }
 
     /**
@@ -156,11 +135,7 @@ namespace mpm
     volume_factor(const unsigned int active_cell_index,
                   const Point<dim> & reference_point) const
     {
-      std::array<double, n_vertices>         values;
-      std::array<Tensor<1, dim>, n_vertices> grad_ref;
-      reference_values(reference_point, values, grad_ref);
-      return determinant(
-        jacobian(grid.cell_geometry(active_cell_index), grad_ref));
+      return linear_functions.volume_factor(active_cell_index, reference_point);
     }
 
     /**
@@ -173,124 +148,33 @@ namespace mpm
      */
     void
     cell_integrals(const unsigned int active_cell_index,
-                   Support<dim> &     integrals) const;
-
-  private:
-    void
-    evaluate_linear(const unsigned int active_cell_index,
-                    const Point<dim> & reference_point,
-                    Support<dim> &     support) const
+                   Support<dim> &     integrals) const
     {
-      const CellGeometry &cell = grid.cell_geometry(active_cell_index);
-      support.resize(n_vertices);
-      std::array<double, n_vertices>         values;
-      std::array<Tensor<1, dim>, n_vertices> grad_ref;
-      reference_values(reference_point, values, grad_ref);
-      for (unsigned int v = 0; v < n_vertices; ++v)
-        {
-          support.nodes[v] = cell.nodes[v];
-          support.N[v]     = values[v];
-        }
-
-      if (cell.is_cartesian)
-        {
-          for (unsigned int v = 0; v < n_vertices; ++v)
-            for (unsigned int k = 0; k < dim; ++k)
-              support.grad_N[v][k] = grad_ref[v][k] * cell.inverse_h[k];
-        }
+      if (linear != nullptr)
+        linear->cell_integrals(active_cell_index, integrals);
       else
-        {
-          const Tensor<2, dim> inverse_transpose =
-            transpose(invert(jacobian(cell, grad_ref)));
-          for (unsigned int v = 0; v < n_vertices; ++v)
-            support.grad_N[v] = inverse_transpose * grad_ref[v];
-        }
-      if (cell.n_hanging > 0)
-        condense_hanging_vertices(cell, support);
+        functions->cell_integrals(active_cell_index, integrals);
     }
 
     /**
-     * On a cell with hanging vertices (an adaptive grid), give each hanging
-     * vertex's value and gradient to its masters: the support is then that
-     * of the continuous Q1 functions of the refined grid, a partition of
-     * unity that reproduces linear fields, and no point reaches a hanging
-     * node. `support` holds the cell's vertices in order on entry.
+     * The scalar finite element whose degrees of freedom sit at the
+     * basis's nodes, for the implicit schemes' unknowns.
      */
-    void
-    condense_hanging_vertices(const typename Grid<dim>::CellGeometry &cell,
-                              Support<dim> &support) const;
-
-    /**
-     * GIMP: the half-width of the point's domain in cells per direction,
-     * at most 1/2, so that it reaches at most three nodes per direction;
-     * zero for B-splines.
-     */
-    Tensor<1, dim>
-    domain_half_width(const ArrayView<const double> &p) const
+    std::unique_ptr<FiniteElement<dim>>
+    node_element() const
     {
-      using Layout = PointLayout<dim>;
-      Tensor<1, dim> l;
-      if (shape_functions == GridShapeFunctions::quadratic_bspline)
-        return l;
-      for (unsigned int d = 0; d < dim; ++d)
-        {
-          double size = p[Layout::reference_size + d];
-          if (shape_functions == GridShapeFunctions::cpGIMP)
-            size *= std::abs(p[Layout::deformation_gradient + d * dim + d]);
-          l[d] = std::min(0.5 * size * lattice->inverse_h()[d], 0.5);
-        }
-      return l;
+      return linear != nullptr ? linear->node_element() :
+                                 functions->node_element();
     }
-
-    /**
-     * GIMP or B-spline support at a reference point, with the domain
-     * half-widths `l` in cells (GIMP; l = 0 gives the hats themselves).
-     */
-    void
-    evaluate_smooth(const unsigned int    active_cell_index,
-                    const Point<dim> &    reference_point,
-                    const Tensor<1, dim> &l,
-                    Support<dim> &        support) const;
 
   private:
-    using CellGeometry = typename Grid<dim>::CellGeometry;
-
-    /** Q1 values and reference gradients, vertices in deal.II's order. */
-    static void
-    reference_values(const Point<dim> &                      xi,
-                     std::array<double, n_vertices> &        values,
-                     std::array<Tensor<1, dim>, n_vertices> &gradients)
-    {
-      for (unsigned int v = 0; v < n_vertices; ++v)
-        {
-          double value = 1.;
-          for (unsigned int d = 0; d < dim; ++d)
-            value *= (v & (1u << d)) ? xi[d] : 1. - xi[d];
-          values[v] = value;
-          for (unsigned int k = 0; k < dim; ++k)
-            {
-              double g = (v & (1u << k)) ? 1. : -1.;
-              for (unsigned int d = 0; d < dim; ++d)
-                if (d != k)
-                  g *= (v & (1u << d)) ? xi[d] : 1. - xi[d];
-              gradients[v][k] = g;
-            }
-        }
-    }
-
-    Tensor<2, dim>
-    jacobian(const CellGeometry &                          cell,
-             const std::array<Tensor<1, dim>, n_vertices> &grad_ref) const
-    {
-      Tensor<2, dim> J;
-      for (unsigned int v = 0; v < n_vertices; ++v)
-        J += outer_product(grid.node_position(cell.nodes[v]), grad_ref[v]);
-      return J;
-    }
-
-    const Grid<dim> &                  grid;
-    const GridShapeFunctions           shape_functions;
-    std::unique_ptr<NodeLattice<dim>> lattice;
+    const GridShapeFunctions shape_functions;
+    /** Q1, the cell map's volume factor for every kind. */
+    const LinearFunctions<dim> linear_functions;
+    /** &linear_functions if the kind is linear, else nullptr. */
+    const LinearFunctions<dim> *linear = nullptr;
+    /** A kind other than linear. */
+    std::unique_ptr<const GridFunctions<dim>> functions;
   };
 } // namespace mpm
 
