@@ -38,27 +38,27 @@ namespace mpm
     for (const auto &field : grid_fields)
       field->begin_projection();
     for_each_point([&](const auto &particle, const Support<dim> &support) {
-      const ArrayView<const double> p     = particle->get_properties();
-      const double                  m     = p[Layout::mass];
-      const unsigned int            field = field_of(p);
-      for (const auto &field : grid_fields)
-        field->add_point(support, p, particle->get_location());
-      for (unsigned int i = 0; i < support.n_nodes; ++i)
-        {
-          double *     v  = nodes.values_of(nodes.claim(support.nodes[i], field));
-          const double Nm = support.N[i] * m;
-          v[NodalLayout::mass] += Nm;
-          for (unsigned int d = 0; d < dim; ++d)
-            v[NodalLayout::velocity + d] += Nm * p[Layout::velocity + d];
-        }
-      if (with_force)
-        add_force(p,
-                  support,
-                  particle->get_location(),
-                  [&](const unsigned int i) {
-                    return nodes.values_of(nodes.slot(support.nodes[i], field)) +
-                           NodalLayout::force;
-                  });
+      const ArrayView<const double> p = particle->get_properties();
+      const double                  m = p[Layout::mass];
+      for (const auto &grid_field : grid_fields)
+        grid_field->add_point(support, p, particle->get_location());
+      nodes.with_field(field_of(p), [&](const auto &field) {
+        for (unsigned int i = 0; i < support.n_nodes; ++i)
+          {
+            double *     v  = field.claim(support.nodes[i]);
+            const double Nm = support.N[i] * m;
+            v[NodalLayout::mass] += Nm;
+            for (unsigned int d = 0; d < dim; ++d)
+              v[NodalLayout::velocity + d] += Nm * p[Layout::velocity + d];
+          }
+        if (with_force)
+          add_force(p,
+                    support,
+                    particle->get_location(),
+                    [&](const unsigned int i) {
+                      return field.values(support.nodes[i]) + NodalLayout::force;
+                    });
+      });
     });
     nodes.finish_projection();
     for (const auto &field : grid_fields)

@@ -2,6 +2,7 @@
 
 #include <mpm/basis/node_cloud.h>
 #include <mpm/base/input_error.h>
+#include <mpm/boundary/boundary_walls.h>
 
 #include <algorithm>
 #include <cmath>
@@ -39,26 +40,18 @@ namespace mpm
       }
 
     using Kind = typename DirichletConditions<dim>::WallKind;
-    for (const auto &cell : points.get_triangulation().active_cell_iterators())
-      {
-        if (!cell->is_locally_owned())
-          continue;
-        for (const unsigned int f : cell->face_indices())
-          {
-            if (!cell->at_boundary(f))
-              continue;
-            const Kind kind = dirichlet.kind_of(cell->face(f)->boundary_id());
-            if (kind == Kind::none)
-              continue;
-            const Tensor<1, dim> outward =
-              cell->face(f)->center() - cell->center();
-            for (unsigned int d = 0; d < dim; ++d)
-              local_walls.push_back(outward[d]);
-            for (unsigned int d = 0; d < dim; ++d)
-              local_walls.push_back(cell->face(f)->center()[d]);
-            local_walls.push_back(static_cast<double>(kind));
-          }
-      }
+    BoundaryWalls<dim>::for_each_boundary_face(
+      grid, true, [&](const auto &cell, const unsigned int f) {
+        const Kind kind = dirichlet.kind_of(cell->face(f)->boundary_id());
+        if (kind == Kind::none)
+          return;
+        const Tensor<1, dim> outward = cell->face(f)->center() - cell->center();
+        for (unsigned int d = 0; d < dim; ++d)
+          local_walls.push_back(outward[d]);
+        for (unsigned int d = 0; d < dim; ++d)
+          local_walls.push_back(cell->face(f)->center()[d]);
+        local_walls.push_back(static_cast<double>(kind));
+      });
 
     const MPI_Comm communicator = points.get_communicator();
     const auto     all_nodes =

@@ -1,5 +1,6 @@
 #include <deal.II/base/mpi.h>
 
+#include <mpm/boundary/boundary_walls.h>
 #include <mpm/boundary/dirichlet_conditions.h>
 #include <mpm/base/input_error.h>
 #include <mpm/base/parse.h>
@@ -99,22 +100,19 @@ namespace mpm
     // A boundary face on x = 0 lies on the axis: the material there may
     // move along it but not across it.
     bool unheld = false;
-    for (const auto &cell : grid.get_triangulation().active_cell_iterators())
-      if (cell->is_locally_owned())
-        for (const unsigned int f : cell->face_indices())
-          if (cell->at_boundary(f))
-            {
-              const auto face    = cell->face(f);
-              bool       on_axis = true;
-              for (const unsigned int v : face->vertex_indices())
-                on_axis = on_axis && std::abs(face->vertex(v)[0]) <=
-                                       1e-12 * cell->diameter();
-              const WallKind kind = kind_of(face->boundary_id());
-              if (on_axis &&
-                  ((kind != WallKind::slip && kind != WallKind::fixed) ||
-                   ends(face->boundary_id())))
-                unheld = true;
-            }
+    BoundaryWalls<dim>::for_each_boundary_face(
+      grid, true, [&](const auto &cell, const unsigned int f) {
+        const auto face    = cell->face(f);
+        bool       on_axis = true;
+        for (const unsigned int v : face->vertex_indices())
+          on_axis =
+            on_axis && std::abs(face->vertex(v)[0]) <= 1e-12 * cell->diameter();
+        const WallKind kind = kind_of(face->boundary_id());
+        if (on_axis &&
+            ((kind != WallKind::slip && kind != WallKind::fixed) ||
+             ends(face->boundary_id())))
+          unheld = true;
+      });
     if (Utilities::MPI::logical_or(unheld, grid.get_communicator()))
       throw InputError("Grid/Geometry = axisymmetric: the grid's boundary "
                        "on the axis (x = 0) is not held for the whole "
@@ -129,8 +127,7 @@ namespace mpm
   void
   DirichletConditions<dim>::find_nodes() const
   {
-    const DoFHandler<dim> &dof_handler = grid.node_numbering();
-    const auto &           tria        = grid.get_triangulation();
+    const auto &tria = grid.get_triangulation();
 
     // Every named boundary must exist somewhere in the grid.
     const std::vector<types::boundary_id> present = tria.get_boundary_ids();
@@ -165,7 +162,23 @@ namespace mpm
     // Per boundary node: is it on a fixed face, and the sum of the outward
     // normals (weighted by face size) of its slip faces, per boundary id.
     // Faces of one id are one wall, curved or not: their normals are
-    // averaged. Different ids meet at corners and each removes a direction.
+    // averaged. Different ids meet at corners and each removes a direction,
+    // in the order of their ids.
+    const auto in = [](const std::vector<types::boundary_id> &ids,
+                       const types::boundary_id               id) {
+      return std::find(ids.begin(), ids.end(), id) != ids.end();
+    };
+    std::vector<types::boundary_id> in_force;
+    for (const auto *ids : {&fixed_ids, &slip_ids, &contact_ids})
+      for (const types::boundary_id id : *ids)
+        {
+          const auto ends = end_times.find(id);
+          if (ends == end_times.end() || found_at < ends->second)
+            in_force.push_back(id);
+        }
+    std::sort(in_force.begin(), in_force.end());
+    in_force.erase(std::unique(in_force.begin(), in_force.end()),
+                   in_force.end());
     struct NodeFaces
     {
       bool                                              fixed = false;
@@ -173,45 +186,17 @@ namespace mpm
       std::map<types::boundary_id, Tensor<1, dim>> slip_normals;
     };
     std::map<unsigned int, NodeFaces> boundary_nodes;
-
-    for (const auto &cell : dof_handler.active_cell_iterators())
+    const BoundaryWalls<dim>          walls(grid, in_force);
+    for (const auto &entry : walls.nodes_on_walls())
       {
-        if (cell->is_artificial())
-          continue;
-        for (const unsigned int f : cell->face_indices())
-          {
-            if (!cell->at_boundary(f))
-              continue;
-            const auto               face = cell->face(f);
-            const types::boundary_id id   = face->boundary_id();
-            const auto               ends = end_times.find(id);
-            if (ends != end_times.end() && !(found_at < ends->second))
-              continue;
-            const bool fixed =
-              std::find(fixed_ids.begin(), fixed_ids.end(), id) !=
-              fixed_ids.end();
-            const bool slip =
-              std::find(slip_ids.begin(), slip_ids.end(), id) != slip_ids.end();
-            const bool contact =
-              std::find(contact_ids.begin(), contact_ids.end(), id) !=
-              contact_ids.end();
-            if (!fixed && !slip && !contact)
-              continue;
-
-            const Tensor<1, dim> normal = Grid<dim>::face_normal(cell, f);
-
-            for (const unsigned int v : face->vertex_indices())
-              {
-                NodeFaces &node =
-                  boundary_nodes[grid.node_of_dof(face->vertex_dof_index(v, 0))];
-                if (fixed)
-                  node.fixed = true;
-                else if (contact)
-                  node.contact_normal += normal;
-                else
-                  node.slip_normals[id] += normal;
-              }
-          }
+        const types::boundary_id id   = in_force[entry.wall];
+        NodeFaces &              node = boundary_nodes[entry.node];
+        if (in(fixed_ids, id))
+          node.fixed = true;
+        else if (in(contact_ids, id))
+          node.contact_normal += entry.normal;
+        else
+          node.slip_normals[id] = entry.normal;
       }
 
     // A free contact node keeps the components along the wall, which are

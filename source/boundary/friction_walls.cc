@@ -3,6 +3,7 @@
 #include <mpm/base/gathered_csv.h>
 #include <mpm/base/input_error.h>
 #include <mpm/base/parse.h>
+#include <mpm/boundary/boundary_walls.h>
 #include <mpm/boundary/coulomb_contact.h>
 #include <mpm/boundary/friction_walls.h>
 
@@ -99,54 +100,15 @@ namespace mpm
                          ". For subdivided_hyper_rectangle, set colorize = "
                          "true in Grid/Arguments.");
 
-    // Per (node, wall): the face normals weighted by face size, and the
-    // node's share of the faces. Each boundary face belongs to one cell,
-    // and every cell around an owned node is owned or ghost here.
-    std::map<std::pair<unsigned int, unsigned int>, Contact> found;
-    std::vector<Tensor<1, dim>> normal_sums(walls.size());
-    for (const auto &cell : grid.node_numbering().active_cell_iterators())
-      {
-        if (cell->is_artificial())
-          continue;
-        for (const unsigned int f : cell->face_indices())
-          {
-            if (!cell->at_boundary(f))
-              continue;
-            const auto face = cell->face(f);
-            const auto wall =
-              std::find_if(walls.begin(), walls.end(), [&](const Wall &w) {
-                return w.id == face->boundary_id();
-              });
-            if (wall == walls.end())
-              continue;
-            const unsigned int   w      = wall - walls.begin();
-            const Tensor<1, dim> normal = Grid<dim>::face_normal(cell, f);
-            if (cell->is_locally_owned())
-              normal_sums[w] += normal;
-            for (const unsigned int v : face->vertex_indices())
-              {
-                const unsigned int node =
-                  grid.node_of_dof(face->vertex_dof_index(v, 0));
-                Contact &contact = found[{node, w}];
-                contact.wall     = w;
-                contact.outward += normal;
-                // int N_v dA over the face; in axisymmetry over the surface
-                // of revolution, 2 pi L (2 x_v + x_other) / 6 on a segment;
-                // in plane stress over the plate's initial thickness.
-                double share = face->measure() / face->n_vertices();
-                if (dim == 2)
-                  share *= grid.geometry().out_of_plane_measure(
-                    Point<dim>((2. * face->vertex(v) + face->vertex(1 - v)) /
-                               3.));
-                contact.area += share;
-                contact.position = face->vertex(v);
-              }
-          }
-      }
+    std::vector<types::boundary_id> ids;
+    for (const Wall &wall : walls)
+      ids.push_back(wall.id);
+    const BoundaryWalls<dim> found(grid, ids);
     for (unsigned int w = 0; w < walls.size(); ++w)
       {
         const Tensor<1, dim> sum =
-          Utilities::MPI::sum(normal_sums[w], tria.get_communicator());
+          Utilities::MPI::sum(found.owned_normal_sum(w),
+                              tria.get_communicator());
         if (!(sum.norm() > 1e-12 * grid.minimum_cell_size()))
           throw InputError("Boundary conditions/Friction boundaries: the "
                            "faces of '" + walls[w].name + "' have no mean "
@@ -157,13 +119,17 @@ namespace mpm
 
     first_contact.assign(grid.n_nodes() + 1, 0);
     contacts.clear();
-    // `found` is ordered by node, then wall: each node's walls in the
-    // order of the entry.
-    for (auto &[key, contact] : found)
+    // Ordered by node, then wall: each node's walls in the order of the
+    // entry.
+    for (const auto &entry : found.nodes_on_walls())
       {
-        contact.outward /= contact.outward.norm();
+        Contact contact;
+        contact.wall     = entry.wall;
+        contact.outward  = entry.normal / entry.normal.norm();
+        contact.area     = entry.share;
+        contact.position = entry.position;
         contacts.push_back(contact);
-        ++first_contact[key.first + 1];
+        ++first_contact[entry.node + 1];
       }
     for (unsigned int k = 0; k < grid.n_nodes(); ++k)
       first_contact[k + 1] += first_contact[k];

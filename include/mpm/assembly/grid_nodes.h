@@ -116,6 +116,78 @@ namespace mpm
       return const_cast<GridNodes *>(this)->values_of(slot);
     }
 
+    /**
+     * One field seen from a point's support: its slot at a node, the
+     * values there, and the slot claimed in a projection. with_field()
+     * hands out field 0's view, whose slot is the node itself, apart from
+     * the others', so that a loop over a support needs no test per node.
+     */
+    struct FirstField
+    {
+      GridNodes &nodes;
+
+      unsigned int
+      slot(const unsigned int node) const
+      {
+        return node;
+      }
+
+      double *
+      values(const unsigned int node) const
+      {
+        return nodes.values.get_values() + node * NodalLayout::n_components;
+      }
+
+      double *
+      claim(const unsigned int node) const
+      {
+        nodes.claim(node, 0);
+        return values(node);
+      }
+    };
+
+    struct OtherField
+    {
+      GridNodes &        nodes;
+      const unsigned int field;
+
+      unsigned int
+      slot(const unsigned int node) const
+      {
+        return nodes.slot(node, field);
+      }
+
+      double *
+      values(const unsigned int node) const
+      {
+        return nodes.values_of(slot(node));
+      }
+
+      double *
+      claim(const unsigned int node) const
+      {
+        return nodes.values_of(nodes.claim(node, field));
+      }
+    };
+
+    /** f(view) with the view of one field (FirstField or OtherField). */
+    template <typename Function>
+    void
+    with_field(const unsigned int field, const Function &f)
+    {
+      if (field == 0)
+        f(FirstField{*this});
+      else
+        f(OtherField{*this, field});
+    }
+
+    template <typename Function>
+    void
+    with_field(const unsigned int field, const Function &f) const
+    {
+      const_cast<GridNodes *>(this)->with_field(field, f);
+    }
+
     /** The mass of every field at a node, summed. */
     double
     mass_at(const unsigned int node) const

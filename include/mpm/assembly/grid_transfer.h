@@ -183,17 +183,18 @@ namespace mpm
                       update_point(particle, support);
                       const ArrayView<const double> p =
                         particle->get_properties();
-                      const double       m     = p[Layout::mass];
-                      const unsigned int field = field_of(p);
-                      for (unsigned int i = 0; i < support.n_nodes; ++i)
-                        {
-                          double *momentum =
-                            values_aside.data() +
-                            nodes.slot(support.nodes[i], field) * dim;
-                          for (unsigned int d = 0; d < dim; ++d)
-                            momentum[d] +=
-                              support.N[i] * m * p[Layout::velocity + d];
-                        }
+                      const double m = p[Layout::mass];
+                      nodes.with_field(field_of(p), [&](const auto &field) {
+                        for (unsigned int i = 0; i < support.n_nodes; ++i)
+                          {
+                            double *momentum =
+                              values_aside.data() +
+                              field.slot(support.nodes[i]) * dim;
+                            for (unsigned int d = 0; d < dim; ++d)
+                              momentum[d] +=
+                                support.N[i] * m * p[Layout::velocity + d];
+                          }
+                      });
                     });
     }
 
@@ -213,15 +214,15 @@ namespace mpm
                       update_point(particle, support);
                       const ArrayView<const double> p =
                         particle->get_properties();
-                      const unsigned int field = field_of(p);
-                      add_force(p,
-                                support,
-                                particle->get_location(),
-                                [&](const unsigned int i) {
-                                  return values_aside.data() +
-                                         nodes.slot(support.nodes[i], field) *
-                                           dim;
-                                });
+                      nodes.with_field(field_of(p), [&](const auto &field) {
+                        add_force(p,
+                                  support,
+                                  particle->get_location(),
+                                  [&](const unsigned int i) {
+                                    return values_aside.data() +
+                                           field.slot(support.nodes[i]) * dim;
+                                  });
+                      });
                     });
     }
 
@@ -268,13 +269,14 @@ namespace mpm
                 const unsigned int  component) const
     {
       Tensor<1, dim> result;
-      for (unsigned int i = 0; i < support.n_nodes; ++i)
-        {
-          const double *v =
-            nodes.values_of(nodes.slot(support.nodes[i], field)) + component;
-          for (unsigned int d = 0; d < dim; ++d)
-            result[d] += support.N[i] * v[d];
-        }
+      nodes.with_field(field, [&](const auto &values) {
+        for (unsigned int i = 0; i < support.n_nodes; ++i)
+          {
+            const double *v = values.values(support.nodes[i]) + component;
+            for (unsigned int d = 0; d < dim; ++d)
+              result[d] += support.N[i] * v[d];
+          }
+      });
       return result;
     }
 
@@ -284,14 +286,16 @@ namespace mpm
                       const unsigned int  field) const
     {
       Tensor<2, dim> L;
-      for (unsigned int i = 0; i < support.n_nodes; ++i)
-        {
-          const double *v = nodes.values_of(nodes.slot(support.nodes[i], field)) +
-                            NodalLayout::velocity;
-          for (unsigned int a = 0; a < dim; ++a)
-            for (unsigned int b = 0; b < dim; ++b)
-              L[a][b] += v[a] * support.grad_N[i][b];
-        }
+      nodes.with_field(field, [&](const auto &values) {
+        for (unsigned int i = 0; i < support.n_nodes; ++i)
+          {
+            const double *v =
+              values.values(support.nodes[i]) + NodalLayout::velocity;
+            for (unsigned int a = 0; a < dim; ++a)
+              for (unsigned int b = 0; b < dim; ++b)
+                L[a][b] += v[a] * support.grad_N[i][b];
+          }
+      });
       return L;
     }
 
