@@ -7,6 +7,7 @@
 #include <deal.II/hp/fe_collection.h>
 #include <deal.II/lac/la_parallel_vector.h>
 
+#include <mpm/base/input_error.h>
 #include <mpm/basis/grid_basis.h>
 #include <mpm/boundary/contact_active_set.h>
 #include <mpm/boundary/nodal_condition.h>
@@ -267,6 +268,97 @@ namespace mpm
     bool pairs_in_step_current = true;
     boost::signals2::scoped_connection grid_changing, grid_changed;
   };
+
+
+
+  // The walks over the system's vertices, shared by the constraints
+  // (grid_system.cc) and the contact (grid_system_contact.cc).
+
+  template <int dim>
+  template <typename Function>
+  void
+  GridSystem<dim>::for_each_unknown_vertex(const Function &f,
+                                           const bool      with_ghosts) const
+  {
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        if (!(cell->is_locally_owned() || (with_ghosts && cell->is_ghost())) ||
+            cell->active_fe_index() != 0)
+          continue;
+        // Grid::node_of knows owned cells only; a ghost cell's nodes are
+        // found through the node numbering (its relevant dofs).
+        const typename DoFHandler<dim>::active_cell_iterator node_cell(
+          &cell->get_triangulation(),
+          cell->level(),
+          cell->index(),
+          &grid.node_numbering());
+        for (const unsigned int v : cell->vertex_indices())
+          f(cell,
+            v,
+            cell->is_locally_owned() ?
+              grid.node_of(cell->active_cell_index(), v) :
+              grid.node_of_dof(node_cell->vertex_dof_index(v, 0)));
+      }
+  }
+
+
+
+  template <int dim>
+  template <typename Function>
+  void
+  GridSystem<dim>::for_each_constrained_vertex(const Function &f,
+                                               const bool with_ghosts) const
+  {
+    for_each_unknown_vertex(
+      [&](const auto &cell, const unsigned int v, const unsigned int node) {
+        // The unilateral walls of a node are numbered across the
+        // conditions, in their order.
+        unsigned int first_wall = 0;
+        for (const NodalCondition<dim> *condition : conditions)
+          if (condition->acts_on(node))
+            {
+              f(cell, v, node, *condition, first_wall);
+              first_wall += condition->n_unilateral_walls(node);
+            }
+        if (first_wall > dim)
+          throw RunError("Boundary conditions: a node of the grid lies "
+                         "on more than " + std::to_string(dim) +
+                         " walls that hold the material only while it "
+                         "presses, which the implicit schemes cannot "
+                         "hold.");
+      },
+      with_ghosts);
+  }
+
+
+
+  template <int dim>
+  template <typename Function>
+  void
+  GridSystem<dim>::for_each_contact_node(const Function &f,
+                                         const bool      with_ghosts) const
+  {
+    std::set<std::pair<unsigned int, unsigned int>> visited;
+    for_each_constrained_vertex(
+      [&](const auto &               cell,
+          const unsigned int         v,
+          const unsigned int         node,
+          const NodalCondition<dim> &condition,
+          const unsigned int         first_wall) {
+        for (unsigned int k = 0; k < condition.n_unilateral_walls(node); ++k)
+          if (visited.insert({node, first_wall + k}).second)
+            f(ContactPair{node,
+                          first_wall + k,
+                          cell->vertex_dof_index(v, 0, 0),
+                          condition.unilateral_normal(node, k),
+                          condition.friction_coefficient(node, k),
+                          at_corner(node),
+                          condition,
+                          k});
+      },
+      with_ghosts);
+  }
+
 } // namespace mpm
 
 #endif
