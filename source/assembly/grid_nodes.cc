@@ -81,10 +81,11 @@ namespace mpm
     for (const auto &[rank, count] : nodes.ghost_targets())
       ghost_owner.insert(ghost_owner.end(), count, rank);
 
-    imported_nodes.clear();
+    imported_in_order.clear();
     for (const auto &range : grid.node_partitioner()->import_indices())
       for (unsigned int i = range.first; i < range.second; ++i)
-        imported_nodes.push_back(i);
+        imported_in_order.push_back(i);
+    imported_nodes = imported_in_order;
     std::sort(imported_nodes.begin(), imported_nodes.end());
     imported_nodes.erase(std::unique(imported_nodes.begin(),
                                      imported_nodes.end()),
@@ -178,6 +179,21 @@ namespace mpm
     for (const unsigned int node : imported_nodes)
       if (!active_flag[node] && values_of(node)[NodalLayout::mass] > 0.)
         solve_slots.push_back(node);
+    // A ghost node where this rank has another field's points but field 0
+    // has mass only from other ranks: field 0 is solved there too, so that
+    // the fields meet at the node on every rank that has it.
+    const unsigned int n_owned = grid.node_partitioner()->locally_owned_size();
+    for (unsigned int s = 0; s < extra_nodes.size(); ++s)
+      {
+        const unsigned int node = extra_nodes[s];
+        if (node >= n_owned && !active_flag[node] &&
+            values_of(node)[NodalLayout::mass] > 0.)
+          {
+            active_flag[node] = true;
+            active_nodes.push_back(node);
+            solve_slots.push_back(node);
+          }
+      }
     for (unsigned int s = n_grid_nodes; s < n_slots(); ++s)
       solve_slots.push_back(s);
   }
@@ -221,12 +237,8 @@ namespace mpm
         }
 
     // The totals back to every rank that has the node as a ghost.
-    std::vector<unsigned int> imports;
-    for (const auto &[begin, end] : partitioner.import_indices())
-      for (unsigned int node = begin; node < end; ++node)
-        imports.push_back(node);
     std::map<unsigned int, std::vector<Record>> to_ghosts;
-    auto next = imports.begin();
+    auto next = imported_in_order.begin();
     for (const auto &[rank, count] : partitioner.import_targets())
       for (unsigned int i = 0; i < count; ++i)
         {
@@ -262,6 +274,69 @@ namespace mpm
           ++n_with_mass[node_of_slot(s)] == 2)
         shared.push_back(node_of_slot(s));
     return shared;
+  }
+
+
+
+  template <int dim>
+  void
+  GridNodes<dim>::combine_over_ranks(const std::vector<unsigned int> &nodes,
+                                     std::vector<double> &            values,
+                                     const unsigned int               width,
+                                     const bool largest) const
+  {
+    const MPI_Comm comm = grid.get_communicator();
+    if (Utilities::MPI::n_mpi_processes(comm) == 1)
+      return;
+    AssertThrow(values.size() == nodes.size() * width, ExcInternalError());
+    const Utilities::MPI::Partitioner &partitioner = *grid.node_partitioner();
+    const unsigned int n_owned = partitioner.locally_owned_size();
+    std::map<unsigned int, unsigned int> entry_of;
+    for (unsigned int k = 0; k < nodes.size(); ++k)
+      entry_of[nodes[k]] = k;
+    // A record: the node's global index, then its values.
+    const auto append = [&](std::vector<double> &out, const unsigned int k) {
+      out.push_back(partitioner.local_to_global(nodes[k]));
+      out.insert(out.end(),
+                 values.begin() + k * width,
+                 values.begin() + (k + 1) * width);
+    };
+    const auto for_each_record = [&](const std::vector<double> &in,
+                                     const auto &               f) {
+      for (std::size_t r = 0; r < in.size(); r += width + 1)
+        {
+          const auto found = entry_of.find(partitioner.global_to_local(
+            static_cast<types::global_dof_index>(in[r])));
+          if (found != entry_of.end())
+            f(values.data() + found->second * width, in.data() + r + 1);
+        }
+    };
+
+    std::map<unsigned int, std::vector<double>> to_owners;
+    for (unsigned int k = 0; k < nodes.size(); ++k)
+      if (nodes[k] >= n_owned)
+        append(to_owners[ghost_owner[nodes[k]]], k);
+    for (const auto &[rank, records] :
+         Utilities::MPI::some_to_some(comm, to_owners))
+      for_each_record(records, [&](double *own, const double *part) {
+        for (unsigned int c = 0; c < width; ++c)
+          own[c] = largest ? std::max(own[c], part[c]) : own[c] + part[c];
+      });
+
+    std::map<unsigned int, std::vector<double>> to_ghosts;
+    auto next = imported_in_order.begin();
+    for (const auto &[rank, count] : partitioner.import_targets())
+      for (unsigned int i = 0; i < count; ++i)
+        {
+          const auto found = entry_of.find(*next++);
+          if (found != entry_of.end())
+            append(to_ghosts[rank], found->second);
+        }
+    for (const auto &[rank, records] :
+         Utilities::MPI::some_to_some(comm, to_ghosts))
+      for_each_record(records, [&](double *own, const double *total) {
+        std::copy_n(total, width, own);
+      });
   }
 
 

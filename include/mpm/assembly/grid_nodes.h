@@ -253,10 +253,26 @@ namespace mpm
 
     /**
      * The nodes where more than one field has mass after the last
-     * projection: where fields meet.
+     * projection: where fields meet. Every rank that has such a node, owned
+     * or ghost, lists it.
      */
     std::vector<unsigned int>
     shared_nodes() const;
+
+    /**
+     * Combine `width` values per node across the ranks that have the node:
+     * `values` holds them for each of `nodes` (local ids, as
+     * shared_nodes() gives them) in turn; a ghost node's values go to its
+     * owner, which adds them to its own (or takes the largest, if
+     * `largest`), and every rank that has the node then holds the owner's
+     * result. Each rank must list the same nodes where they are shared.
+     * Collective.
+     */
+    void
+    combine_over_ranks(const std::vector<unsigned int> &nodes,
+                       std::vector<double> &            values,
+                       const unsigned int               width,
+                       const bool                       largest) const;
 
     /**
      * The values as a vector of the FESystem of 1 + 2 dim Q1 components on
@@ -313,6 +329,11 @@ namespace mpm
     std::vector<unsigned int> active_nodes;
     /** Owned nodes that other ranks may add to in compress(). */
     std::vector<unsigned int> imported_nodes;
+    /**
+     * The same, once per rank that has them as ghosts, in the order of
+     * the partitioner's import targets.
+     */
+    std::vector<unsigned int> imported_in_order;
     std::vector<unsigned int> solve_slots;
     bool                      full_projection = true;
 
