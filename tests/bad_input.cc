@@ -404,6 +404,31 @@ main(int argc, char **argv)
     MPI_Barrier(MPI_COMM_WORLD);
     run_case("--restart of a cut checkpoint file", restart({quasi_static}));
   }
+  // Contact between bodies, on the block on the slope.
+  {
+    const auto slope = [&](const std::string &setting) {
+      return std::vector<std::string>{
+        "--set", setting,
+        "--set", "Output/Directory=output-bad-contact",
+        mpm_tests::source_file("../prm/block_on_slope.prm")};
+    };
+    run_case("a contact pair that names a group no body is in",
+             slope("Contact/Pairs=block-wall: 0.3"));
+    run_case("a negative contact friction",
+             slope("Contact/Pairs=block-slope: -0.1"));
+    run_case("a contact pair of a group with itself",
+             slope("Contact/Pairs=block-block: 0.3"));
+    run_case("a contact pair without a coefficient",
+             slope("Contact/Pairs=block-slope"));
+    run_case("a contact group name with a dash",
+             slope("Bodies/block/Contact group=the-block"));
+    run_case("contact groups with the quasi-static scheme",
+             slope("Time stepping/Scheme=quasi-static"));
+    run_case("contact groups with the blended mass",
+             slope("Time stepping/Mass matrix=blended"));
+    run_case("contact groups with GIMP",
+             slope("Grid/Shape functions=uGIMP"));
+  }
   // Stable for the loose fill at the start (limit 1.82e-4 s), not once the
   // bottom has compacted and stiffened.
   run_case("fixed time step the compacting fill outgrows",

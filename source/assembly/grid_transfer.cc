@@ -34,6 +34,8 @@ namespace mpm
   void
   GridTransfer<dim>::project_mass_momentum(const bool with_force)
   {
+    if (field_contact)
+      field_contact->begin_projection(nodes);
     nodes.begin_projection(0, NodalLayout::n_components);
     for (const auto &field : grid_fields)
       field->begin_projection();
@@ -51,6 +53,14 @@ namespace mpm
             for (unsigned int d = 0; d < dim; ++d)
               v[NodalLayout::velocity + d] += Nm * p[Layout::velocity + d];
           }
+        if (field_contact)
+          {
+            const double volume = Layout::current_volume(p);
+            for (unsigned int i = 0; i < support.n_nodes; ++i)
+              field_contact->add_volume_gradient(field.slot(support.nodes[i]),
+                                                 volume,
+                                                 support.grad_N[i]);
+          }
         if (with_force)
           add_force(p,
                     support,
@@ -63,6 +73,26 @@ namespace mpm
     nodes.finish_projection();
     for (const auto &field : grid_fields)
       field->finish_projection(points.handler());
+    if (field_contact)
+      find_contact_geometry();
+  }
+
+
+
+  template <int dim>
+  void
+  GridTransfer<dim>::find_contact_geometry()
+  {
+    field_contact->find_normals(nodes);
+    if (field_contact->fields_meet())
+      for_each_point([&](const auto &particle, const Support<dim> &support) {
+        const ArrayView<const double> p = particle->get_properties();
+        field_contact->add_point(field_of(p),
+                                 support,
+                                 particle->get_location(),
+                                 p);
+      });
+    field_contact->finish_surfaces(nodes);
   }
 
 
@@ -117,6 +147,8 @@ namespace mpm
                                       false,
                                       [](const unsigned int, const double *) {
                                       });
+    if (constrain && field_contact)
+      field_contact->couple(nodes, step_dt, false);
     if (constrain)
       for (const unsigned int slot : nodes.slots_to_solve())
         for (const NodalCondition<dim> *condition : conditions)
@@ -164,10 +196,10 @@ namespace mpm
 
   template <int dim>
   void
-  GridTransfer<dim>::couple_fields(const double)
+  GridTransfer<dim>::couple_fields(const double dt)
   {
-    // Fields of bodies that do not interact are left alone: each moves as
-    // if the others were not there.
+    if (field_contact)
+      field_contact->couple(nodes, dt, true);
   }
 
 
@@ -292,6 +324,7 @@ namespace mpm
   void
   GridTransfer<dim>::begin_step(const double dt)
   {
+    step_dt = dt;
     for (const NodalCondition<dim> *condition : conditions)
       condition->begin_explicit_solve(time, dt);
   }

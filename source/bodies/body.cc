@@ -78,6 +78,13 @@ namespace mpm
     prm.declare_entry("Release interval", "0", Patterns::Double(0.),
                       "Inflow: the time [s] between releases; must be "
                       "positive if Releases > 1.");
+    prm.declare_entry(
+      "Contact group", "default", Patterns::Anything(),
+      "The contact group of the body: bodies of one group share a velocity "
+      "field at the nodes, and stick together where they meet; bodies of "
+      "different groups meet through Contact/Pairs (Coulomb friction, "
+      "free separation). A name without '-', ':', ',' or spaces. Explicit "
+      "scheme only, for two groups or more.");
     prm.declare_entry("Initial velocity", "0; 0; 0", Patterns::Anything(),
                       "Initial velocity as a function of position x, y (, z) "
                       "and the constant pi: one expression per component, "
@@ -95,6 +102,7 @@ namespace mpm
                   const std::vector<std::string> &material_names)
     : body_name(name)
   {
+    group            = Utilities::trim(prm.get("Contact group"));
     bulk_density     = prm.get_double("Density");
     first_release    = prm.get_double("First release");
     n_releases       = prm.get_integer("Releases");

@@ -68,6 +68,7 @@ namespace mpm
       }
     prm.leave_subsection();
     RigidObstacles<dim>::declare_parameters(prm, names.obstacles);
+    FieldContact<dim>::declare_parameters(prm);
   }
 
 
@@ -125,6 +126,8 @@ namespace mpm
     material_library->check_scene(choices);
 
     grid      = std::make_unique<Grid<dim>>(prm, communicator);
+    field_contact =
+      std::make_unique<FieldContact<dim>>(prm, bodies, *grid);
     dirichlet = std::make_unique<DirichletConditions<dim>>(prm, *grid);
     dirichlet->check_scene(choices);
     friction_walls = std::make_unique<FrictionWalls<dim>>(prm, *grid);
@@ -134,6 +137,7 @@ namespace mpm
     const GridShapeFunctions shape_functions =
       GridBasis<dim>::parse_kind(prm);
     GridBasis<dim>::check_scene(choices, shape_functions);
+    field_contact->check_scene(choices, shape_functions);
     MeshfreeBasis<dim>::check_scene(choices, grid->geometry());
     obstacles =
       std::make_unique<RigidObstacles<dim>>(prm, names.obstacles, *grid);
@@ -144,7 +148,7 @@ namespace mpm
     grid->create();
     if (grid->geometry().kind() == Geometry<dim>::Kind::axisymmetric)
       dirichlet->check_axis();
-    nodes = std::make_unique<GridNodes<dim>>(*grid);
+    nodes = std::make_unique<GridNodes<dim>>(*grid, field_contact->n_groups());
     nodes->setup();
     basis = std::make_unique<GridBasis<dim>>(*grid, shape_functions);
 
@@ -216,7 +220,19 @@ namespace mpm
     if (!obstacles->empty())
       nodal_conditions.push_back(obstacles.get());
     transfer         = std::make_unique<GridTransfer<dim>>(
-      *points, *basis, *nodes, nodal_conditions, gravity);
+      *points,
+      *basis,
+      *nodes,
+      nodal_conditions,
+      gravity,
+      field_contact->field_of_body());
+    std::vector<const ForceReport *> force_reports(nodal_conditions.begin(),
+                                                   nodal_conditions.end());
+    if (field_contact->n_groups() > 1)
+      {
+        transfer->couple_fields_by(*field_contact);
+        force_reports.push_back(field_contact.get());
+      }
     transfer->use_grid_fields(materials);
     const typename TimeScheme<dim>::Scene scene{*grid,
                                                 *points,
@@ -253,7 +269,7 @@ namespace mpm
                                        end_time,
                                        communicator);
     time_series = std::make_unique<TimeSeries<dim>>(
-      prm, output_directory, gravity, *points, nodal_conditions, restart);
+      prm, output_directory, gravity, *points, force_reports, restart);
     // The tangent check only prints, and the explicit velocity projection
     // is made anew at every step (checkpoints from before either lack the
     // entry); the scheme's step entries may change too.

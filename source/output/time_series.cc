@@ -41,11 +41,11 @@ namespace mpm
     const std::string &                             directory,
     const Tensor<1, dim> &                          gravity,
     const MaterialPoints<dim> &                     points,
-    const std::vector<const NodalCondition<dim> *> &conditions,
+    const std::vector<const ForceReport *> &        reports,
     const bool                                      continued)
     : gravity(gravity)
     , communicator(points.get_communicator())
-    , conditions(conditions)
+    , reports(reports)
   {
     prm.enter_subsection("Output");
     filename     = directory + "/" + prm.get("Time series file");
@@ -112,8 +112,8 @@ namespace mpm
           }
         if (points.has_outflow())
           file << ",removed_mass,removed_points";
-        for (const NodalCondition<dim> *condition : conditions)
-          for (const std::string &name : condition->force_names())
+        for (const ForceReport *report : reports)
+          for (const std::string &name : report->force_names())
             file << ',' << name;
         file << '\n';
         file << std::setprecision(12);
@@ -238,8 +238,8 @@ namespace mpm
     const types::particle_index removed_points =
       points.has_outflow() ? points.removed_points() : 0;
     std::vector<double> forces;
-    for (const NodalCondition<dim> *condition : conditions)
-      for (const double force : condition->forces())
+    for (const ForceReport *report : reports)
+      for (const double force : report->forces())
         forces.push_back(force);
 
     if (file.is_open())

@@ -132,7 +132,15 @@ namespace mpm
         "corrected")
       scene.transfer.enable_corrected_velocity_projection();
     if (TimeScheme<dim>::time_stepping_entry(prm, "Mass matrix") == "blended")
-      scene.transfer.enable_blended_mass();
+      {
+        // Its change of the accelerations would undo the contact's at the
+        // nodes where the fields meet.
+        if (scene.transfer.couples_fields())
+          throw InputError("Time stepping/Mass matrix = blended does not run "
+                           "with bodies in several Contact groups: use the "
+                           "lumped mass.");
+        scene.transfer.enable_blended_mass();
+      }
   }
 
 

@@ -3,8 +3,9 @@
 
 #include <deal.II/base/tensor.h>
 
-#include <mpm/assembly/grid_nodes.h>
+#include <mpm/assembly/field_contact.h>
 #include <mpm/assembly/grid_field.h>
+#include <mpm/assembly/grid_nodes.h>
 #include <mpm/assembly/point_assembly.h>
 #include <mpm/basis/grid_basis.h>
 #include <mpm/boundary/nodal_condition.h>
@@ -119,6 +120,24 @@ namespace mpm
     }
 
     /**
+     * From now on, the fields meet through `contact` where they share
+     * nodes (FieldContact): in the nodal solve and in the velocities that
+     * the conditions constrain.
+     */
+    void
+    couple_fields_by(FieldContact<dim> &contact)
+    {
+      field_contact = &contact;
+    }
+
+    /** Whether couple_fields_by() was called. */
+    bool
+    couples_fields() const
+    {
+      return field_contact != nullptr;
+    }
+
+    /**
      * From now on, compute_nodal_velocity() corrects the lumped velocity
      * projection towards the consistent one
      * (correct_towards_consistent_mass()).
@@ -229,7 +248,7 @@ namespace mpm
     /**
      * v = p / m on every node (0 where m = 0), corrected if
      * enable_corrected_velocity_projection() was called, then, if
-     * `constrain`, the nodal conditions.
+     * `constrain`, the contact between fields and the nodal conditions.
      */
     void
     compute_nodal_velocity(const bool constrain = true);
@@ -362,11 +381,18 @@ namespace mpm
     size_values_aside();
 
     /**
+     * After a full projection: where the fields meet, the normals and
+     * surfaces of their contact (FieldContact), from a pass over the
+     * points. Collective.
+     */
+    void
+    find_contact_geometry();
+
+    /**
      * The stage of the nodal solve between a = f / m and the nodal
      * conditions, at the nodes where two or more fields have mass: where
-     * fields meet, they exchange momentum here. With one field there is
-     * nothing to couple; fields of bodies that do not interact pass through
-     * each other.
+     * fields meet, they exchange momentum here (FieldContact). Without a
+     * contact, fields of bodies pass through each other.
      */
     void
     couple_fields(const double dt);
@@ -401,6 +427,9 @@ namespace mpm
     const std::vector<unsigned int>                field_of_body;
     double                                         load_factor = 1.;
     double                                         time        = 0.;
+    /** The step begun last (begin_step()), 0 before the first. */
+    double                                         step_dt     = 0.;
+    FieldContact<dim> *                            field_contact = nullptr;
     typename PointAssembly<dim>::Scratch           scratch;
     /** The grid fields the laws read, and per law (by id) its fields' indices. */
     std::vector<std::unique_ptr<GridField<dim>>>   grid_fields;

@@ -135,6 +135,13 @@ namespace mpm
                          "= explicit.");
     }
 
+    /** Its contact group (FieldContact). */
+    const std::string &
+    contact_group() const
+    {
+      return group;
+    }
+
     /** Whether the body starts under geostatic stress. */
     bool
     geostatic() const
@@ -151,6 +158,7 @@ namespace mpm
 
   private:
     std::string                 body_name;
+    std::string                 group;
     std::unique_ptr<Shape<dim>> shape;
     unsigned int            material = 0;
     double                  bulk_density     = 0.;

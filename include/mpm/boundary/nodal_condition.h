@@ -5,6 +5,8 @@
 #include <deal.II/base/types.h>
 #include <deal.II/lac/affine_constraints.h>
 
+#include <mpm/base/force_report.h>
+
 #include <array>
 #include <cmath>
 #include <string>
@@ -45,7 +47,7 @@ namespace mpm
 
 
   template <int dim>
-  class NodalCondition
+  class NodalCondition : public ForceReport
   {
   public:
     virtual ~NodalCondition() = default;
@@ -166,20 +168,6 @@ namespace mpm
                     const unsigned int,
                     const Tensor<1, dim> &) const
     {}
-
-    /** Names of the forces the condition reports in the time series. */
-    virtual std::vector<std::string>
-    force_names() const
-    {
-      return {};
-    }
-
-    /** Those forces at the last nodal solve, on every rank. Collective. */
-    virtual std::vector<double>
-    forces() const
-    {
-      return {};
-    }
 
     /**
      * At an output time: write what the condition reports along its

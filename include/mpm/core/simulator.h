@@ -126,6 +126,7 @@ namespace mpm
     std::unique_ptr<DirichletConditions<dim>> dirichlet;
     std::unique_ptr<FrictionWalls<dim>>       friction_walls;
     std::unique_ptr<RigidObstacles<dim>>      obstacles;
+    std::unique_ptr<FieldContact<dim>>        field_contact;
     std::string                               output_directory;
     /** Everything that acts at the grid's nodes, in the order it acts. */
     std::vector<const NodalCondition<dim> *>  nodal_conditions;

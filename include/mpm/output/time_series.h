@@ -7,7 +7,7 @@
 #include <boost/serialization/split_member.hpp>
 #include <boost/serialization/vector.hpp>
 
-#include <mpm/boundary/nodal_condition.h>
+#include <mpm/base/force_report.h>
 #include <mpm/points/material_points.h>
 
 #include <fstream>
@@ -44,9 +44,9 @@ namespace mpm
   /**
    * The CSV time series of a run: time, step, dt, the Diagnostics, the
    * material's extent and volume, the position, velocity, stress and
-   * diagonal of F of tracked points, and the forces that the nodal
-   * conditions report (on walls). A tracked point is the material point
-   * nearest to a given position at the start.
+   * diagonal of F of tracked points, and the forces that the walls,
+   * obstacles and contacts between bodies report (ForceReport). A tracked
+   * point is the material point nearest to a given position at the start.
    */
   template <int dim>
   class TimeSeries
@@ -69,7 +69,7 @@ namespace mpm
                const std::string &                             directory,
                const Tensor<1, dim> &                          gravity,
                const MaterialPoints<dim> &                     points,
-               const std::vector<const NodalCondition<dim> *> &conditions,
+               const std::vector<const ForceReport *> &        reports,
                const bool                                      continued);
 
     /** Simulated time between rows; 0: every step. */
@@ -117,7 +117,7 @@ namespace mpm
     // mutable: save() asks it for its length, and tellp() is not const.
     mutable std::ofstream                         file;
     std::vector<types::particle_index>            tracked_ids;
-    const std::vector<const NodalCondition<dim> *> conditions;
+    const std::vector<const ForceReport *> reports;
   };
 
 
