@@ -426,8 +426,6 @@ main(int argc, char **argv)
              slope("Time stepping/Scheme=quasi-static"));
     run_case("contact groups with the blended mass",
              slope("Time stepping/Mass matrix=blended"));
-    run_case("contact groups with GIMP",
-             slope("Grid/Shape functions=uGIMP"));
   }
   // Stable for the loose fill at the start (limit 1.82e-4 s), not once the
   // bottom has compacted and stiffened.

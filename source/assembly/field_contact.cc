@@ -28,16 +28,18 @@ namespace mpm
                       "Pairs does not name (0: frictionless, inf: no "
                       "sliding).");
     prm.declare_entry(
-      "Normal", "larger volume",
-      Patterns::Selection(
-        "larger volume|maximum volume gradient|volume gradient difference"),
+      "Normal", "separating gradient",
+      Patterns::Selection("separating gradient|maximum volume gradient|"
+                          "volume gradient difference"),
       "The normal between two groups at a node, from their volume "
-      "gradients sum V_p grad N over each group's points. larger volume: "
-      "the gradient of the group with more volume in the node's support: "
-      "the body that fills more of the node's cells has the better "
-      "resolved surface there (the default). maximum volume gradient: the "
-      "larger gradient (CB-Geo's rule), which tilts where a body's corner "
-      "is near the node. volume gradient difference: both weigh in.");
+      "gradients sum V_p grad N over each group's points near it. "
+      "separating gradient: the gradient of either group along which the "
+      "two groups' surfaces near the node are further apart (a separating "
+      "axis: a gradient tilted by a body's corner, or by the other face "
+      "of a body that a wide support sees, makes the bodies overlap along "
+      "it); the default. maximum volume gradient: the larger gradient "
+      "(CB-Geo's rule), which tilts where a body's corner is near the "
+      "node. volume gradient difference: both weigh in.");
     prm.declare_entry(
       "Gap tolerance", "0", Patterns::Double(0.),
       "Two groups touch at a node where they approach and their surfaces, "
@@ -81,8 +83,8 @@ namespace mpm
                                  "Contact/Default friction");
     parse_pairs(prm.get("Pairs"), default_law);
     const std::string rule = prm.get("Normal");
-    normal_rule = rule == "larger volume" ?
-                    NormalRule::larger_volume :
+    normal_rule = rule == "separating gradient" ?
+                    NormalRule::separating_gradient :
                     rule == "maximum volume gradient" ?
                     NormalRule::largest_gradient :
                     NormalRule::gradient_difference;
@@ -159,17 +161,8 @@ namespace mpm
 
   template <int dim>
   void
-  FieldContact<dim>::check_scene(const SceneChoices &       choices,
-                                 const GridShapeFunctions shape_functions) const
+  FieldContact<dim>::check_scene(const SceneChoices &choices) const
   {
-    // The wider supports of the smooth bases share nodes a cell and more
-    // inside a body, where the volume gradients give no normal.
-    if (n_groups() > 1 && shape_functions != GridShapeFunctions::linear)
-      throw InputError("The bodies are in " + std::to_string(n_groups()) +
-                       " Contact groups, and contact between bodies runs "
-                       "with Grid/Shape functions = linear: the wider "
-                       "supports of GIMP and B-splines share nodes inside "
-                       "the bodies, where no surface is near.");
     if (n_groups() > 1 && !choices.explicit_steps())
       throw InputError(
         "The bodies are in " + std::to_string(n_groups()) +
@@ -186,8 +179,8 @@ namespace mpm
   FieldContact<dim>::begin_projection(const GridNodes<dim> &nodes)
   {
     for (const unsigned int slot : nodes.slots_to_solve())
-      if ((slot + 1) * width <= slot_gradients.size())
-        std::fill_n(slot_gradients.begin() + slot * width, width, 0.);
+      if ((slot + 1) * dim <= slot_gradients.size())
+        std::fill_n(slot_gradients.begin() + slot * dim, dim, 0.);
   }
 
 
@@ -203,10 +196,10 @@ namespace mpm
     shared = nodes.shared_nodes();
     const unsigned int K = n_groups();
     slot_gradients.resize(std::max<std::size_t>(slot_gradients.size(),
-                                                nodes.n_slots() * width),
+                                                nodes.n_slots() * dim),
                           0.);
 
-    gradients.assign(shared.size() * K * width, 0.);
+    gradients.assign(shared.size() * K * dim, 0.);
     for (unsigned int k = 0; k < shared.size(); ++k)
       {
         shared_index[shared[k]] = k;
@@ -214,16 +207,16 @@ namespace mpm
           {
             const unsigned int slot = nodes.slot(shared[k], field);
             if (slot != GridNodes<dim>::no_slot)
-              std::copy_n(slot_gradients.begin() + slot * width,
-                          width,
-                          gradients.begin() + (k * K + field) * width);
+              std::copy_n(slot_gradients.begin() + slot * dim,
+                          dim,
+                          gradients.begin() + (k * K + field) * dim);
           }
       }
-    nodes.combine_over_ranks(shared, gradients, K * width, false);
+    nodes.combine_over_ranks(shared, gradients, K * dim, false);
 
     lower_field.assign(shared.size(), none);
     upper_field.assign(shared.size(), none);
-    normals.assign(shared.size(), Tensor<1, dim>());
+    candidates.assign(2 * shared.size(), Tensor<1, dim>());
     for (unsigned int k = 0; k < shared.size(); ++k)
       {
         unsigned int n_with_mass = 0;
@@ -239,9 +232,11 @@ namespace mpm
         if (n_with_mass != 2)
           lower_field[k] = upper_field[k] = none;
         else
-          normals[k] = normal(k, lower_field[k], upper_field[k]);
+          for (unsigned int c = 0; c < 2; ++c)
+            candidates[2 * k + c] =
+              normal(k, lower_field[k], upper_field[k], c);
       }
-    surfaces.assign(2 * shared.size(),
+    surfaces.assign(4 * shared.size(),
                     -std::numeric_limits<double>::infinity());
   }
 
@@ -251,34 +246,18 @@ namespace mpm
   Tensor<1, dim>
   FieldContact<dim>::normal(const unsigned int k,
                             const unsigned int a,
-                            const unsigned int b) const
+                            const unsigned int b,
+                            const unsigned int candidate) const
   {
-    const double * values_a = &gradients[(k * n_groups() + a) * width];
-    const double * values_b = &gradients[(k * n_groups() + b) * width];
-    Tensor<1, dim> g_a, g_b;
-    for (unsigned int d = 0; d < dim; ++d)
-      {
-        g_a[d] = values_a[d];
-        g_b[d] = values_b[d];
-      }
+    const Tensor<1, dim> g_a = gradient(k, a), g_b = gradient(k, b);
     // sum V_p grad N_i(x_p) points from a field's points to the node: at
     // the field's surface, out of it. From A to B: g_a, or -g_b.
     Tensor<1, dim> n;
     switch (normal_rule)
       {
-        case NormalRule::larger_volume:
-          {
-            // The field that fills more of the node's support has the
-            // better resolved surface there, unless the node lies inside
-            // it, where its gradient nearly cancels.
-            const double v_a = values_a[dim], v_b = values_b[dim];
-            const double sharp_a = v_a > 0. ? g_a.norm() / v_a : 0.;
-            const double sharp_b = v_b > 0. ? g_b.norm() / v_b : 0.;
-            const bool   from_a  = v_a >= v_b ? sharp_a >= 0.5 * sharp_b :
-                                                sharp_b < 0.5 * sharp_a;
-            n = from_a ? g_a : -g_b;
-            break;
-          }
+        case NormalRule::separating_gradient:
+          n = candidate == 0 ? g_a : -g_b;
+          break;
         case NormalRule::largest_gradient:
           n = g_a.norm() >= g_b.norm() ? g_a : -g_b;
           break;
@@ -304,22 +283,27 @@ namespace mpm
         const unsigned int k = shared_index[support.nodes[i]];
         if (k == none || (field != lower_field[k] && field != upper_field[k]))
           continue;
-        const Tensor<1, dim> &n = normals[k];
-        // Half the extent along n of the point's box, whose edges l_d e_d
-        // have become l_d F e_d.
-        double reach = 0.;
-        for (unsigned int d = 0; d < dim; ++d)
+        for (unsigned int candidate = 0; candidate < 2; ++candidate)
           {
-            double along = 0.;
-            for (unsigned int c = 0; c < dim; ++c)
-              along += n[c] * p[Layout::deformation_gradient + c * dim + d];
-            reach += 0.5 * p[Layout::reference_size + d] * std::abs(along);
+            const Tensor<1, dim> &n = candidates[2 * k + candidate];
+            // Half the extent along n of the point's box, whose edges
+            // l_d e_d have become l_d F e_d.
+            double reach = 0.;
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                double along = 0.;
+                for (unsigned int c = 0; c < dim; ++c)
+                  along +=
+                    n[c] * p[Layout::deformation_gradient + c * dim + d];
+                reach += 0.5 * p[Layout::reference_size + d] * std::abs(along);
+              }
+            const double s     = x * n;
+            double *     ends  = &surfaces[4 * k + 2 * candidate];
+            if (field == lower_field[k])
+              ends[0] = std::max(ends[0], s + reach);
+            else
+              ends[1] = std::max(ends[1], reach - s);
           }
-        const double s = x * n;
-        if (field == lower_field[k])
-          surfaces[2 * k] = std::max(surfaces[2 * k], s + reach);
-        else
-          surfaces[2 * k + 1] = std::max(surfaces[2 * k + 1], reach - s);
       }
   }
 
@@ -329,7 +313,23 @@ namespace mpm
   void
   FieldContact<dim>::finish_surfaces(const GridNodes<dim> &nodes)
   {
-    nodes.combine_over_ranks(shared, surfaces, 2, true);
+    nodes.combine_over_ranks(shared, surfaces, 4, true);
+    // The candidate along which the surfaces are further apart: a normal
+    // tilted off the face the bodies meet at makes them overlap along it.
+    normals.assign(shared.size(), Tensor<1, dim>());
+    distances.assign(shared.size(), 0.);
+    for (unsigned int k = 0; k < shared.size(); ++k)
+      if (lower_field[k] != none)
+        {
+          double apart[2];
+          for (unsigned int c = 0; c < 2; ++c)
+            apart[c] = candidates[2 * k + c].norm_square() > 0. ?
+                         -surfaces[4 * k + 2 * c] - surfaces[4 * k + 2 * c + 1] :
+                         -std::numeric_limits<double>::infinity();
+          const unsigned int c = apart[1] > apart[0] ? 1 : 0;
+          normals[k]           = candidates[2 * k + c];
+          distances[k]         = apart[c];
+        }
   }
 
 
@@ -382,8 +382,19 @@ namespace mpm
             {
               const unsigned int a = fields[i], b = fields[j];
               const PairLaw &    law = pair_laws[pair_index(a, b)];
+              // Where three fields meet, no surfaces decide: the larger
+              // gradient's normal.
               const Tensor<1, dim> n =
-                two_fields ? normals[k] : normal(k, a, b);
+                two_fields ?
+                  normals[k] :
+                  normal(k,
+                         a,
+                         b,
+                         normal_rule == NormalRule::separating_gradient ?
+                           (gradient(k, a).norm() >= gradient(k, b).norm() ?
+                              0 :
+                              1) :
+                           0);
               if (n.norm_square() == 0.)
                 continue;
               double *values_a = nodes.values_of(nodes.slot(node, a));
@@ -398,8 +409,7 @@ namespace mpm
               if (two_fields)
                 {
                   // The surfaces' distance at the end of the step.
-                  const double apart =
-                    -surfaces[2 * k + 1] - surfaces[2 * k] - dt * approach;
+                  const double apart = distances[k] - dt * approach;
                   if (!(apart < gap))
                     continue;
                 }

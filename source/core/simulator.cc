@@ -137,7 +137,7 @@ namespace mpm
     const GridShapeFunctions shape_functions =
       GridBasis<dim>::parse_kind(prm);
     GridBasis<dim>::check_scene(choices, shape_functions);
-    field_contact->check_scene(choices, shape_functions);
+    field_contact->check_scene(choices);
     MeshfreeBasis<dim>::check_scene(choices, grid->geometry());
     obstacles =
       std::make_unique<RigidObstacles<dim>>(prm, names.obstacles, *grid);

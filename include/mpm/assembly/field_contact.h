@@ -8,7 +8,6 @@
 #include <mpm/assembly/grid_nodes.h>
 #include <mpm/base/force_report.h>
 #include <mpm/base/scene_choices.h>
-#include <mpm/basis/grid_basis.h>
 #include <mpm/basis/support.h>
 #include <mpm/bodies/body.h>
 #include <mpm/grid/grid.h>
@@ -29,11 +28,11 @@ namespace mpm
    * through one Coulomb law (CoulombContact), as in Bardenhagen et al.
    * (2000) and the multi-field codes after it (Uintah, NairnMPM, CB-Geo):
    * - the node's centre-of-mass velocity is what the two fields share;
-   * - the normal from field A to field B is the volume gradient, sum V_p
-   *   grad N_i(x_p) over the field's points, which points out of the
-   *   field where it ends, of the field with more volume in the node's
-   *   support (the default), or of the larger gradient, or the difference
-   *   of the two;
+   * - the normal from field A to field B is a volume gradient, sum V_p
+   *   grad N_i(x_p) over a field's points, which points out of the field
+   *   where it ends: A's or B's, whichever the two fields' surfaces near
+   *   the node are further apart along (the default: a separating axis),
+   *   or the larger one, or their difference;
    * - the fields touch only while they approach and their surfaces,
    *   measured from the points, are less than the gap tolerance apart at
    *   the end of the step: a point's surface along n lies at x_p . n
@@ -54,8 +53,8 @@ namespace mpm
    * after the full projection: points move only at the end of a step.
    *
    * A node where three or more fields have mass (where three bodies meet)
-   * takes its pairs one after the other, each with its normal, by
-   * approach alone.
+   * takes its pairs one after the other, each along the larger of its
+   * two gradients, by approach alone.
    */
   template <int dim>
   class FieldContact : public ForceReport
@@ -88,13 +87,9 @@ namespace mpm
       return body_fields;
     }
 
-    /**
-     * Contact between bodies needs the explicit scheme and the linear
-     * basis (InputError).
-     */
+    /** Contact between bodies needs the explicit scheme (InputError). */
     void
-    check_scene(const SceneChoices &       choices,
-                const GridShapeFunctions shape_functions) const;
+    check_scene(const SceneChoices &choices) const;
 
     /**
      * A projection of all nodal values begins (before
@@ -106,25 +101,22 @@ namespace mpm
 
     /**
      * A point of volume V adds V grad N to the volume gradient of its
-     * field at a node of its support, the slot, in the projection, and V
-     * to the field's volume there.
+     * field at a node of its support, the slot, in the projection.
      */
     void
     add_volume_gradient(const unsigned int    slot,
                         const double          volume,
                         const Tensor<1, dim> &grad_N)
     {
-      if (slot_gradients.size() < (slot + 1) * width)
-        slot_gradients.resize(2 * (slot + 1) * width, 0.);
-      double *values = &slot_gradients[slot * width];
+      if (slot_gradients.size() < (slot + 1) * dim)
+        slot_gradients.resize(2 * (slot + 1) * dim, 0.);
       for (unsigned int d = 0; d < dim; ++d)
-        values[d] += volume * grad_N[d];
-      values[dim] += volume;
+        slot_gradients[slot * dim + d] += volume * grad_N[d];
     }
 
     /**
-     * After the projection: the nodes where fields meet and the normals
-     * there. Collective.
+     * After the projection: the nodes where fields meet and the candidate
+     * normals there. Collective.
      */
     void
     find_normals(const GridNodes<dim> &nodes);
@@ -146,7 +138,10 @@ namespace mpm
               const Point<dim> &             x,
               const ArrayView<const double> &p);
 
-    /** The points' surfaces, over the ranks. Collective. */
+    /**
+     * The points' surfaces, over the ranks, and at each node the normal
+     * of the candidates along which they are furthest apart. Collective.
+     */
     void
     finish_surfaces(const GridNodes<dim> &nodes);
 
@@ -175,13 +170,10 @@ namespace mpm
 
     enum class NormalRule
     {
-      larger_volume,
+      separating_gradient,
       largest_gradient,
       gradient_difference
     };
-
-    /** Per slot and per shared node and field: the gradient, the volume. */
-    static constexpr unsigned int width = dim + 1;
 
     /** How a pair of groups meets. */
     struct PairLaw
@@ -202,13 +194,26 @@ namespace mpm
     }
 
     /**
-     * The unit normal from field a to field b at the k-th shared node,
-     * from their volume gradients; zero where they give none.
+     * The unit normal from field a to field b at the k-th shared node by
+     * the rule's `candidate` (0: a's gradient, 1: minus b's; the larger
+     * one, or the difference, for the other rules); zero where the
+     * gradients give none.
      */
     Tensor<1, dim>
     normal(const unsigned int k,
            const unsigned int a,
-           const unsigned int b) const;
+           const unsigned int b,
+           const unsigned int candidate) const;
+
+    /** The volume gradient of a field at the k-th shared node. */
+    Tensor<1, dim>
+    gradient(const unsigned int k, const unsigned int field) const
+    {
+      Tensor<1, dim> g;
+      for (unsigned int d = 0; d < dim; ++d)
+        g[d] = gradients[(k * n_groups() + field) * dim + d];
+      return g;
+    }
 
     static constexpr unsigned int none = numbers::invalid_unsigned_int;
 
@@ -217,31 +222,32 @@ namespace mpm
     std::vector<unsigned int> body_fields;
     /** By pair_index(a, b), a < b. */
     std::vector<PairLaw>      pair_laws;
-    NormalRule                normal_rule = NormalRule::larger_volume;
+    NormalRule                normal_rule = NormalRule::separating_gradient;
     /** The gap below which surfaces touch, as a fraction of the cell. */
     double                    gap_tolerance = 0.;
 
-    /**
-     * width values per slot: sum V_p grad N_i and sum V_p over the points
-     * of the slot's field whose support holds the node.
-     */
+    /** dim values per slot: sum V_p grad N_i of the slot's field. */
     std::vector<double> slot_gradients;
 
     /** The nodes where fields meet, and per node its index there. */
     std::vector<unsigned int> shared;
     std::vector<unsigned int> shared_index;
-    /** Per shared node: those of every field, n_groups width values. */
+    /** Per shared node: the gradient of every field, n_groups dim values. */
     std::vector<double> gradients;
     /**
      * Per shared node where exactly two fields meet: the lower field, the
-     * higher one and the normal between them; elsewhere lower = none.
+     * higher one, the two candidate normals between them, and once the
+     * surfaces are known the normal and the surfaces' distance along it;
+     * elsewhere lower = none.
      */
     std::vector<unsigned int>   lower_field, upper_field;
+    std::vector<Tensor<1, dim>> candidates;
     std::vector<Tensor<1, dim>> normals;
+    std::vector<double>         distances;
     /**
-     * Per shared node, two values: the furthest surface of the lower
-     * field along the normal, max (x . n + r), and minus the nearest of
-     * the upper one, max -(x . n - r).
+     * Per shared node and candidate, two values: the furthest surface of
+     * the lower field along the candidate, max (x . n + r), and minus the
+     * nearest of the upper one, max -(x . n - r).
      */
     std::vector<double> surfaces;
 
