@@ -6,7 +6,7 @@
 // may raise End time (not in the quasi-static scheme, whose load ramps over
 // it), and one continues from checkpoint.old/, as after a run killed
 // between the renames that swap a new checkpoint in. The scenes cover the
-// explicit scheme, the quasi-static scheme,
+// explicit scheme (one with two contact groups), the quasi-static scheme,
 // Newmark with walls, a wall that ends and an outflow boundary, an inflow
 // whose releases fall before, between and after the parts, and the
 // meshfree methods with their node cloud. Two cases continue
@@ -278,6 +278,15 @@ main(int argc, char **argv)
            stop_after_one_step,
            to_the_end},
           true);
+
+  // Two contact groups: their fields, normals and surfaces are made anew
+  // at every step, so nothing of them goes into the checkpoint.
+  compare("block_on_slope, contact between bodies",
+          prm + "block_on_slope.prm",
+          {"Time stepping/End time=0.02",
+           "Output/Interval=0.005",
+           "Output/Time series interval=0"},
+          {stop_after_one_step, stop_after_one_step, to_the_end});
 
   compare("oedometer, quasi-static",
           prm + "oedometer.prm",
