@@ -9,9 +9,10 @@
 //   settled) to 0.5 s, fitted by a parabola, gives a within 1 % for mu =
 //   0 and 0.3 with linear shape functions, and for mu = 0.3 with uGIMP
 //   and quadratic B-splines, whose wider supports share nodes a cell and
-//   more inside the bodies. At every row the tangential sum is at most mu times the
-//   normal sum, and the normal force is the block's weight across the
-//   slope, M g cos 30 = 679.7 N/m, within 2 % on average. With mu = 0.7 >
+//   more inside the bodies. At every row the tangential sum is at most mu
+//   times the normal sum, and at each node of the force files of the 11
+//   output times |T| <= mu N; the normal force is the block's weight
+//   across the slope, M g cos 30 = 679.7 N/m, within 2 % on average. With mu = 0.7 >
 //   tan 30 (and a stiffer material, E = 1e8 Pa, so that the slab's shear
 //   stays below a micrometre) the block sticks: it moves less than 1e-4 m.
 // - prm/two_disks.prm with each disk in its own group, frictionless: the
@@ -30,6 +31,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <utility>
 
@@ -124,6 +126,34 @@ namespace
               }
           }
         mpm_tests::check("at every row, sum |T| <= mu sum N", coulomb);
+        // The force files of the output times, node by node.
+        unsigned int n_files = 0, n_nodes = 0;
+        bool         node_coulomb = true;
+        const std::string directory = "output-slope-mu" + friction + "-" +
+                                      basis.substr(0, basis.find(' '));
+        for (const auto &file : std::filesystem::directory_iterator(directory))
+          if (file.path().filename().string().rfind("slope_on_block_forces_",
+                                                    0) == 0)
+            {
+              ++n_files;
+              // The file of the start lists no node: no solve came before.
+              std::ifstream in(file.path());
+              std::string   header, first;
+              if (!std::getline(in, header) || !std::getline(in, first))
+                continue;
+              auto rows = mpm_tests::read_csv(file.path().string());
+              for (unsigned int n = 0; n < rows["normal_force"].size(); ++n)
+                {
+                  const double N = rows["normal_force"][n];
+                  const double T = rows["tangential_force"][n];
+                  node_coulomb = node_coulomb && N >= 0. &&
+                                 T <= (mu + 1e-9) * N;
+                  ++n_nodes;
+                }
+            }
+        mpm_tests::check("a force file at each of the 11 output times, "
+                         "|T| <= mu N >= 0 at each of its nodes",
+                         n_files == 11 && n_nodes > 50 && node_coulomb);
         mpm_tests::check("the mean normal force is M g cos 30 within 2 %",
                          std::abs(normal / rows - M * g * std::cos(theta)) <
                            0.02 * M * g * std::cos(theta));

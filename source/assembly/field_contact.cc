@@ -1,6 +1,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <mpm/assembly/field_contact.h>
+#include <mpm/base/gathered_csv.h>
 #include <mpm/base/input_error.h>
 #include <mpm/base/parse.h>
 #include <mpm/boundary/coulomb_contact.h>
@@ -345,7 +346,12 @@ namespace mpm
     const unsigned int n_owned = grid.node_partitioner()->locally_owned_size();
     const double       gap     = gap_tolerance * grid.minimum_cell_size();
     if (end_of_step)
-      std::fill(recorded.begin(), recorded.end(), 0.);
+      {
+        std::fill(recorded.begin(), recorded.end(), 0.);
+        node_forces.resize(n_groups() * n_groups());
+        for (auto &rows : node_forces)
+          rows.clear();
+      }
 
     // A field's velocity as the law sees it, and its write-back.
     const auto velocity_of = [&](const double *v) {
@@ -436,8 +442,17 @@ namespace mpm
                   double *r = &recorded[pair_index(a, b) * (dim + 2)];
                   for (unsigned int d = 0; d < dim; ++d)
                     r[d] += force[d];
-                  r[dim] += force * n;
-                  r[dim + 1] += (force - (force * n) * n).norm();
+                  const double normal_part = force * n;
+                  const double tangential_part =
+                    (force - normal_part * n).norm();
+                  r[dim] += normal_part;
+                  r[dim + 1] += tangential_part;
+                  std::array<double, dim + 2> row;
+                  for (unsigned int d = 0; d < dim; ++d)
+                    row[d] = grid.node_position(node)[d];
+                  row[dim]     = normal_part;
+                  row[dim + 1] = tangential_part;
+                  node_forces[pair_index(a, b)].push_back(row);
                 }
             }
       }
@@ -477,6 +492,30 @@ namespace mpm
                       recorded.begin() + (pair_index(a, b) + 1) * (dim + 2));
     Utilities::MPI::sum(values, grid.get_communicator(), values);
     return values;
+  }
+
+
+
+  template <int dim>
+  void
+  FieldContact<dim>::write_tractions(const std::string &directory,
+                                     const unsigned int step) const
+  {
+    const std::vector<std::array<double, dim + 2>> none_recorded;
+    for (unsigned int a = 0; a < n_groups(); ++a)
+      for (unsigned int b = a + 1; b < n_groups(); ++b)
+        {
+          const unsigned int pair = pair_index(a, b);
+          write_gathered_csv(grid.get_communicator(),
+                             pair < node_forces.size() ? node_forces[pair] :
+                                                         none_recorded,
+                             step_csv_name(directory,
+                                           group_names[a] + "_on_" +
+                                             group_names[b] + "_forces",
+                                           step),
+                             coordinate_columns<dim>() +
+                               "normal_force,tangential_force");
+        }
   }
 
 

@@ -226,8 +226,7 @@ namespace mpm
       nodal_conditions,
       gravity,
       field_contact->field_of_body());
-    std::vector<const ForceReport *> force_reports(nodal_conditions.begin(),
-                                                   nodal_conditions.end());
+    force_reports.assign(nodal_conditions.begin(), nodal_conditions.end());
     if (field_contact->n_groups() > 1)
       {
         transfer->couple_fields_by(*field_contact);
@@ -386,8 +385,8 @@ namespace mpm
                         *nodes,
                         grid->get_mapping(),
                         scheme->node_cloud());
-    for (const NodalCondition<dim> *condition : nodal_conditions)
-      condition->write_tractions(output_directory, step);
+    for (const ForceReport *report : force_reports)
+      report->write_tractions(output_directory, step);
   }
 
 

@@ -13,6 +13,7 @@
 #include <mpm/grid/grid.h>
 #include <mpm/points/point_layout.h>
 
+#include <array>
 #include <limits>
 #include <string>
 #include <vector>
@@ -165,6 +166,14 @@ namespace mpm
     std::vector<double>
     forces() const override;
 
+    /**
+     * Per pair A-B, `a_on_b_forces_<step>.csv`: each node where A pressed
+     * on B in the last nodal solve, its normal and tangential force.
+     */
+    void
+    write_tractions(const std::string &directory,
+                    const unsigned int step) const override;
+
   private:
     using Layout = PointLayout<dim>;
 
@@ -256,6 +265,11 @@ namespace mpm
      * force (dim values), the normal and the tangential sums.
      */
     std::vector<double> recorded;
+    /**
+     * The same node by node, at the owned nodes: position, then the
+     * normal and tangential force, per pair.
+     */
+    std::vector<std::vector<std::array<double, dim + 2>>> node_forces;
 
     boost::signals2::scoped_connection grid_changed;
   };

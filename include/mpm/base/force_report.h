@@ -29,6 +29,14 @@ namespace mpm
     {
       return {};
     }
+
+    /**
+     * At an output time: write the forces node by node into `directory`,
+     * named with the step. Collective.
+     */
+    virtual void
+    write_tractions(const std::string &, const unsigned int) const
+    {}
   };
 } // namespace mpm
 

@@ -169,13 +169,6 @@ namespace mpm
                     const Tensor<1, dim> &) const
     {}
 
-    /**
-     * At an output time: write what the condition reports along its
-     * walls into `directory`, named with the step. Collective.
-     */
-    virtual void
-    write_tractions(const std::string &, const unsigned int) const
-    {}
 
   protected:
     /**

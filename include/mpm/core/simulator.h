@@ -130,6 +130,8 @@ namespace mpm
     std::string                               output_directory;
     /** Everything that acts at the grid's nodes, in the order it acts. */
     std::vector<const NodalCondition<dim> *>  nodal_conditions;
+    /** The conditions and the contact between bodies, if any. */
+    std::vector<const ForceReport *>          force_reports;
     std::unique_ptr<MaterialLibrary>          material_library;
     std::vector<Body<dim>>                    bodies;
     std::unique_ptr<MaterialPoints<dim>>      points;
